@@ -1,0 +1,66 @@
+#pragma once
+// Orthographic and perspective cameras exactly as Shirley & Marschner,
+// "Fundamentals of Computer Graphics", 4.3 define them (derivation in
+// docs/camera.md).
+//
+// Frame: eye e, right u, up v, back w, orthonormal and right-handed (u = v x w).
+// Image window on the plane at focal distance d: l < 0 < r, b < 0 < t.
+// Pixel (i, j), i from the left, j from the TOP row, has its centre at raster
+// position (x, y) = (i + 0.5, j + 0.5), and
+//     u = l + (r - l) x / nx,      v = t + (b - t) y / ny.
+// Orthographic: origin e + u U + v V, direction -W.
+// Perspective:  direction -d W + u U + v V, normalised; the origin is moved onto
+//               the image plane, e - d W + u U + v V, so t is the Euclidean
+//               distance from the image plane along the ray.
+
+#include "strahl/core/math.h"
+#include "strahl/core/ray.h"
+
+namespace strahl {
+
+enum class Projection { Orthographic, Perspective };
+
+struct CameraFrame {
+    Vec3 e{0.0f}, u{1.0f, 0.0f, 0.0f}, v{0.0f, 1.0f, 0.0f}, w{0.0f, 0.0f, 1.0f};
+
+    // From the eye, the back direction w (the camera looks along -w) and an up
+    // hint that need not be orthogonal to w. Throws strahl::Error if w is zero
+    // or parallel to up.
+    static CameraFrame fromBackUp(const Vec3& eye, const Vec3& back, const Vec3& up);
+    // From the eye and a point it looks at: w = normalise(eye - target).
+    static CameraFrame lookAt(const Vec3& eye, const Vec3& target, const Vec3& up);
+};
+
+struct ImageWindow {
+    float l = -1.0f, r = 1.0f, b = -1.0f, t = 1.0f;
+};
+
+class Camera {
+public:
+    Camera(const CameraFrame& frame, Projection projection, ImageWindow window,
+           float focalDistance, int nx, int ny);
+
+    // The window of a perspective camera with vertical field of view fovY
+    // (radians): t = d tan(fovY/2), b = -t, r = t nx/ny, l = -r.
+    static ImageWindow windowFromFov(float fovY, float focalDistance, int nx, int ny);
+
+    // The ray through continuous raster position (x, y), see the header comment.
+    Ray generateRay(float x, float y) const;
+
+    const CameraFrame& frame() const { return frame_; }
+    Projection projection() const { return projection_; }
+    const ImageWindow& window() const { return window_; }
+    float focalDistance() const { return d_; }
+    int width() const { return nx_; }
+    int height() const { return ny_; }
+    Mat4 worldToCamera() const;  // rows u, v, w; camera looks down -z
+
+private:
+    CameraFrame frame_;
+    Projection projection_;
+    ImageWindow window_;
+    float d_;
+    int nx_, ny_;
+};
+
+}  // namespace strahl

@@ -1,0 +1,45 @@
+#pragma once
+// Writing a Film to disk through OpenImageIO; the format follows the extension.
+//   .exr            scene-linear RGB (half by default, float on request), AOVs as
+//                   named channels ("normal.X", "depth.Z", "albedo.R", ...) and
+//                   metadata (render time, spp, camera, strahl version).
+//   .png .jpg .jpeg .tif .tiff
+//                   display-referred: the OpenColorIO display/view transform is
+//                   applied (see display_transform.h), then quantised.
+// Files are written to a temporary name in the destination folder and renamed,
+// so a failure never leaves a partial file behind.
+
+#include <filesystem>
+#include <map>
+#include <string>
+
+#include "strahl/film/display_transform.h"
+#include "strahl/film/film.h"
+
+namespace strahl {
+
+struct OutputSettings {
+    bool exrFloat = false;  // 32-bit float EXR channels instead of half
+    ColorSettings color;
+};
+
+// Free-form metadata stored in EXR headers ("strahl:<key>") and as far as the
+// format allows elsewhere.
+struct ImageMetadata {
+    double renderSeconds = 0.0;
+    int spp = 0;
+    std::string integrator;
+    std::string camera;  // human-readable camera description
+    Mat4 worldToCamera{1.0f};
+    std::map<std::string, std::string> extra;
+};
+
+// Throws strahl::Error if the extension is not supported or the folder is not
+// writable (checked by creating and removing a temporary file), so a render can
+// fail before it starts rather than after.
+void checkOutputPath(const std::filesystem::path& file);
+
+void writeImage(const Film& film, const std::filesystem::path& file, const OutputSettings& settings,
+                const ImageMetadata& metadata);
+
+}  // namespace strahl

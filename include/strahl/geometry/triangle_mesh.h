@@ -1,0 +1,52 @@
+#pragma once
+// TriangleMesh: indexed triangles with optional per-vertex normals and UVs and
+// an optional per-triangle material slot. Pure data and math, no Embree.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "strahl/core/bounds.h"
+#include "strahl/core/math.h"
+
+namespace strahl {
+
+struct TriangleMesh {
+    std::vector<Vec3> positions;
+    std::vector<Vec3> normals;    // empty, or one per position
+    std::vector<Vec2> uvs;        // empty, or one per position
+    std::vector<uint32_t> indices;  // three per triangle, counter-clockwise = front
+    std::vector<uint32_t> faceMaterials;  // empty, or one slot per triangle
+
+    size_t triangleCount() const { return indices.size() / 3; }
+    size_t vertexCount() const { return positions.size(); }
+    Bounds3 bounds() const;
+    size_t memoryBytes() const;
+
+    // Applies an affine transform: positions by m, normals by its inverse transpose.
+    void transform(const Mat4& m);
+
+    // Throws strahl::Error naming `source` on a NaN/Inf coordinate, an index out
+    // of range, or attribute arrays whose sizes disagree with the positions.
+    void validate(const std::string& source) const;
+
+    // Embree reads vertex buffers with 16-byte loads, so a buffer shared with it
+    // needs readable memory behind the last vertex: reserve one spare element.
+    void reservePadding() { positions.reserve(positions.size() + 1); }
+    bool isPadded() const { return positions.capacity() > positions.size(); }
+};
+
+// Everything shading needs about a hit point, computed once for the closest hit.
+struct SurfaceInteraction {
+    Vec3 p{0.0f};       // hit point rebuilt from barycentrics (not o + t*d)
+    Vec3 pError{0.0f};  // conservative per-axis bound on the error of p
+    Vec3 Ng{0.0f};      // unit geometric normal (winding order)
+    Vec3 Ns{0.0f};      // unit shading normal, same hemisphere as Ng
+    Vec2 uv{0.0f};
+    uint32_t materialSlot = 0;  // faceMaterials entry, 0 if the mesh has none
+};
+
+// Interaction on triangle `prim` at Embree barycentrics (u, v).
+SurfaceInteraction triangleInteraction(const TriangleMesh& mesh, uint32_t prim, float u, float v);
+
+}  // namespace strahl

@@ -1,0 +1,91 @@
+#pragma once
+// SceneDesc: the scene file as plain data, before anything is loaded or built.
+// Every element remembers where it came from (a JSON pointer such as
+// "/shapes/2") so that later stages can name the place in their errors.
+// The file format is documented key by key in docs/scene-format.md.
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "strahl/camera/camera.h"
+#include "strahl/core/math.h"
+#include "strahl/film/film.h"
+#include "strahl/geometry/triangle_mesh.h"
+
+namespace strahl {
+
+struct CameraDesc {
+    Projection projection = Projection::Perspective;
+    Vec3 eye{0.0f, 0.0f, 5.0f};
+    std::optional<Vec3> lookAt;  // exactly one of lookAt / back; default look_at (0,0,0)
+    std::optional<Vec3> back;
+    Vec3 up{0.0f, 1.0f, 0.0f};
+    float focalDistance = 1.0f;
+    std::optional<float> fovYDegrees;  // perspective only; exclusive with window
+    std::optional<ImageWindow> window;  // default: fov 45 deg (persp.), [-1,1]^2 (ortho.)
+};
+
+struct FilmDesc {
+    int width = 640;
+    int height = 480;
+    std::vector<std::filesystem::path> outputs;  // resolved against the scene folder
+    std::vector<AovKind> aovs;
+    bool exrFloat = false;
+};
+
+struct RenderDesc {
+    std::string integrator = "direct";  // eyelight | normal | depth | primid | direct
+    int spp = 1;
+    uint64_t seed = 0;
+};
+
+struct MaterialDesc {
+    std::string name;
+    Color diffuse{0.8f};
+    Color emission{0.0f};
+    std::string where;
+};
+
+struct ShapeDesc {
+    std::string name;                // optional label, defaults to the JSON pointer
+    std::filesystem::path file;      // mesh file (resolved), empty for inline meshes
+    TriangleMesh inlineMesh;         // used when file is empty
+    Mat4 transform{1.0f};            // object to world
+    std::string material;            // empty: the file's own materials, else "default"
+    std::string where;               // JSON pointer, e.g. "/shapes/0"
+};
+
+enum class LightType { Point, Directional };
+
+struct LightDesc {
+    LightType type = LightType::Point;
+    Vec3 position{0.0f};                 // point
+    Vec3 direction{0.0f, -1.0f, 0.0f};   // directional: the direction light travels
+    Color intensity{1.0f};               // point: radiant intensity, W/sr per channel
+    Color irradiance{1.0f};              // directional: W/m^2 on a surface facing it
+    std::string where;
+};
+
+struct SceneDesc {
+    std::filesystem::path file;  // the scene file itself (absolute)
+    CameraDesc camera;
+    FilmDesc film;
+    RenderDesc render;
+    Color background{0.0f};  // radiance of rays that escape
+    std::vector<MaterialDesc> materials;
+    std::vector<ShapeDesc> shapes;
+    std::vector<LightDesc> lights;
+};
+
+// Parse a scene file. Throws strahl::Error:
+//   "scene.json:12:5: syntax error: ..." for malformed JSON,
+//   "scene.json: /shapes/1: unknown key 'colour' (allowed: ...)" for bad content.
+SceneDesc parseSceneFile(const std::filesystem::path& file);
+
+// The same from text; `file` names it in errors and anchors relative paths.
+SceneDesc parseSceneText(const std::string& text, const std::filesystem::path& file);
+
+}  // namespace strahl

@@ -1,0 +1,100 @@
+#include "strahl/geometry/triangle_mesh.h"
+
+#include <cmath>
+
+#include "strahl/core/error.h"
+#include "strahl/core/ray.h"
+
+namespace strahl {
+
+Bounds3 TriangleMesh::bounds() const {
+    Bounds3 b;
+    for (const Vec3& p : positions) b.expand(p);
+    return b;
+}
+
+size_t TriangleMesh::memoryBytes() const {
+    return positions.capacity() * sizeof(Vec3) + normals.capacity() * sizeof(Vec3) +
+           uvs.capacity() * sizeof(Vec2) + indices.capacity() * sizeof(uint32_t) +
+           faceMaterials.capacity() * sizeof(uint32_t);
+}
+
+void TriangleMesh::transform(const Mat4& m) {
+    for (Vec3& p : positions) p = Vec3(m * Vec4(p, 1.0f));
+    if (!normals.empty()) {
+        const Mat3 normalMatrix = glm::transpose(glm::inverse(Mat3(m)));
+        for (Vec3& n : normals) {
+            const Vec3 t = normalMatrix * n;
+            const float len = glm::length(t);
+            n = len > 0.0f ? t / len : t;
+        }
+    }
+    // A mirroring transform flips the winding order relative to the normals;
+    // swap two indices per triangle so front faces stay front faces.
+    if (glm::determinant(Mat3(m)) < 0.0f) {
+        for (size_t i = 0; i + 2 < indices.size(); i += 3) std::swap(indices[i + 1], indices[i + 2]);
+    }
+}
+
+void TriangleMesh::validate(const std::string& source) const {
+    if (indices.size() % 3 != 0)
+        fail(source, ": index count ", indices.size(), " is not a multiple of 3");
+    if (!normals.empty() && normals.size() != positions.size())
+        fail(source, ": ", normals.size(), " normals for ", positions.size(), " vertices");
+    if (!uvs.empty() && uvs.size() != positions.size())
+        fail(source, ": ", uvs.size(), " texture coordinates for ", positions.size(), " vertices");
+    if (!faceMaterials.empty() && faceMaterials.size() != triangleCount())
+        fail(source, ": ", faceMaterials.size(), " face materials for ", triangleCount(),
+             " triangles");
+    for (size_t i = 0; i < positions.size(); ++i) {
+        if (!isFinite(positions[i]))
+            fail(source, ": vertex ", i, " has a non-finite coordinate (", positions[i].x, ", ",
+                 positions[i].y, ", ", positions[i].z, ")");
+    }
+    for (size_t i = 0; i < indices.size(); ++i) {
+        if (indices[i] >= positions.size())
+            fail(source, ": triangle ", i / 3, " refers to vertex ", indices[i], " but there are only ",
+                 positions.size(), " vertices");
+    }
+}
+
+SurfaceInteraction triangleInteraction(const TriangleMesh& mesh, uint32_t prim, float u, float v) {
+    const uint32_t i0 = mesh.indices[3 * size_t(prim)];
+    const uint32_t i1 = mesh.indices[3 * size_t(prim) + 1];
+    const uint32_t i2 = mesh.indices[3 * size_t(prim) + 2];
+    const Vec3& p0 = mesh.positions[i0];
+    const Vec3& p1 = mesh.positions[i1];
+    const Vec3& p2 = mesh.positions[i2];
+    const float b0 = 1.0f - u - v;
+
+    SurfaceInteraction si;
+    // Rebuild the point from barycentrics: its error is bounded by gamma(7) times
+    // the sum of the absolute products (pbrt-v4 Triangle::InteractionFromIntersection),
+    // whereas o + t*d would carry the error of t times the ray length.
+    si.p = b0 * p0 + u * p1 + v * p2;
+    si.pError = gammaBound(7) * (glm::abs(b0 * p0) + glm::abs(u * p1) + glm::abs(v * p2));
+
+    Vec3 ng = glm::cross(p1 - p0, p2 - p0);
+    const float len = glm::length(ng);
+    si.Ng = len > 0.0f ? ng / len : Vec3(0.0f, 0.0f, 1.0f);  // degenerate: any unit normal
+
+    si.Ns = si.Ng;
+    if (!mesh.normals.empty()) {
+        const Vec3 ns = b0 * mesh.normals[i0] + u * mesh.normals[i1] + v * mesh.normals[i2];
+        const float nsLen = glm::length(ns);
+        if (nsLen > 0.0f && std::isfinite(nsLen)) {
+            si.Ns = ns / nsLen;
+            // Keep the geometric normal on the side the artist's normals point to.
+            if (glm::dot(si.Ng, si.Ns) < 0.0f) si.Ng = -si.Ng;
+        }
+    }
+    if (!mesh.uvs.empty()) {
+        si.uv = b0 * mesh.uvs[i0] + u * mesh.uvs[i1] + v * mesh.uvs[i2];
+    } else {
+        si.uv = Vec2(u, v);
+    }
+    si.materialSlot = mesh.faceMaterials.empty() ? 0u : mesh.faceMaterials[prim];
+    return si;
+}
+
+}  // namespace strahl

@@ -1,0 +1,32 @@
+#pragma once
+// Shared helpers for the test suite: where the repository and ../shared/data
+// are, and a skip for tests that need the shared data set.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+namespace strahl::test {
+
+inline std::filesystem::path sourceDir() { return STRAHL_SOURCE_DIR; }
+inline std::filesystem::path sharedData() { return STRAHL_SHARED_DATA; }
+
+// A fresh, empty scratch folder for one test.
+inline std::filesystem::path scratchDir(const std::string& name) {
+    auto dir = std::filesystem::temp_directory_path() / ("strahl-test-" + name);
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+}  // namespace strahl::test
+
+// Skips the current test when ../shared/data (next to the repository) is absent,
+// as it is in a user's clone.
+#define STRAHL_REQUIRE_SHARED_DATA()                                                     \
+    do {                                                                                 \
+        if (!std::filesystem::exists(::strahl::test::sharedData() / "MANIFEST.tsv"))     \
+            GTEST_SKIP() << "needs ../shared/data (the project's shared test data set), " \
+                            "which is not next to this checkout";                         \
+    } while (0)
