@@ -12,18 +12,25 @@ find_package(nlohmann_json 3.10 REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(Threads REQUIRED)
 
-# Debian's OpenImageIO target lists /usr/include/opencv4 among its include
-# directories although OpenCV is optional and the folder is usually absent; CMake
-# refuses to generate with a missing imported include directory, so drop it.
-foreach(_prop INTERFACE_INCLUDE_DIRECTORIES INTERFACE_SYSTEM_INCLUDE_DIRECTORIES)
-  get_target_property(_dirs OpenImageIO::OpenImageIO ${_prop})
-  if(_dirs)
-    set(_kept "")
-    foreach(_d IN LISTS _dirs)
-      if(NOT _d MATCHES "opencv4" OR EXISTS "${_d}")
-        list(APPEND _kept "${_d}")
-      endif()
-    endforeach()
-    set_target_properties(OpenImageIO::OpenImageIO PROPERTIES ${_prop} "${_kept}")
-  endif()
-endforeach()
+# Two Debian packaging quirks leave imported targets with include directories
+# that do not exist, which CMake refuses at generate time:
+#  - OpenImageIO lists /usr/include/opencv4 although OpenCV is optional;
+#  - OpenColorIO's config sits in /usr/share/cmake, so its relative prefix
+#    resolves to "/" and its include directory to "/include".
+# Drop the missing folders; OCIO's headers are then found in /usr/include.
+function(strahl_drop_missing_include_dirs target)
+  foreach(_prop INTERFACE_INCLUDE_DIRECTORIES INTERFACE_SYSTEM_INCLUDE_DIRECTORIES)
+    get_target_property(_dirs ${target} ${_prop})
+    if(_dirs)
+      set(_kept "")
+      foreach(_d IN LISTS _dirs)
+        if(EXISTS "${_d}")
+          list(APPEND _kept "${_d}")
+        endif()
+      endforeach()
+      set_target_properties(${target} PROPERTIES ${_prop} "${_kept}")
+    endif()
+  endforeach()
+endfunction()
+strahl_drop_missing_include_dirs(OpenImageIO::OpenImageIO)
+strahl_drop_missing_include_dirs(OpenColorIO::OpenColorIO)

@@ -1,1 +1,26 @@
-int main() { return 0; }
+// strahl's entry point: parse the command line, run the command, and turn every
+// failure into one message on stderr and a non-zero exit status.
+
+#include <cstdio>
+#include <exception>
+#include <new>
+
+#include "commands.h"
+#include "options.h"
+#include "strahl/core/error.h"
+
+int main(int argc, char** argv) {
+    using namespace strahl::app;
+    Options options;
+    if (const auto code = parseOptions(argc, argv, options)) return *code;
+    try {
+        return options.command == Command::Render ? runRender(options) : runInfo(options);
+    } catch (const strahl::Error& e) {
+        std::fprintf(stderr, "strahl: error: %s\n", e.what());
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "strahl: error: out of memory\n");
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "strahl: error: %s\n", e.what());
+    }
+    return 1;
+}

@@ -1,0 +1,148 @@
+#include "strahl/render/renderer.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <atomic>
+#include <chrono>
+#include <vector>
+
+#include "strahl/camera/tile_rays.h"
+#include "strahl/core/error.h"
+
+namespace strahl {
+
+namespace {
+
+std::vector<PixelRect> cutTiles(const PixelRect& crop, int size) {
+    std::vector<PixelRect> tiles;
+    for (int y = crop.y0; y < crop.y1; y += size)
+        for (int x = crop.x0; x < crop.x1; x += size)
+            tiles.push_back({x, y, std::min(x + size, crop.x1), std::min(y + size, crop.y1)});
+    return tiles;
+}
+
+// Everything one worker needs while rendering one tile.
+struct TileContext {
+    const World& world;
+    const Integrator& integrator;
+    Film& film;
+    ShadingStats stats;
+    uint64_t cameraRays = 0;
+
+    void shadeSample(int px, int py, const Ray& ray, const Hit& hit, Pcg32& rng) {
+        Color L;
+        AovSample aov;
+        if (hit.valid()) {
+            const SurfaceInteraction si = world.interaction(hit);
+            L = integrator.shade(world, ray, hit, si, rng, stats);
+            aov.hit = true;
+            aov.normal = si.Ns;
+            aov.depth = hit.t * glm::length(ray.dir);
+            aov.albedo = world.material(hit, si).diffuse;
+        } else {
+            L = integrator.miss(world, ray);
+        }
+        // A non-finite sample would poison the pixel's mean forever; drop its
+        // radiance (the AOVs are finite by construction).
+        if (!isFinite(L)) L = Color(0.0f);
+        film.addSample(px, py, L, aov);
+    }
+};
+
+template <int N>
+void renderTilePackets(TileContext& ctx, const TileRayGenerator& gen, const PixelRect& tile,
+                       int spp) {
+    using Packet = CameraPacket<N>;
+    Packet packet;
+    for (int s = 0; s < spp; ++s) {
+        for (int by = tile.y0; by < tile.y1; by += Packet::kBlockHeight) {
+            for (int bx = tile.x0; bx < tile.x1; bx += Packet::kBlockWidth) {
+                ctx.cameraRays += static_cast<uint64_t>(gen.fillPacket(tile, bx, by, s, packet));
+                if constexpr (N == 16)
+                    ctx.world.accel->intersect16(packet.valid, packet.rays, RayCoherence::Coherent);
+                else
+                    ctx.world.accel->intersect8(packet.valid, packet.rays, RayCoherence::Coherent);
+                for (int lane = 0; lane < N; ++lane) {
+                    if (!packet.valid[lane]) continue;
+                    Ray ray = packet.rays.ray(lane);
+                    ray.tfar = kInfinity;  // the packet's tfar now holds the hit distance
+                    ctx.shadeSample(packet.px[lane], packet.py[lane], ray, packet.rays.hit(lane),
+                                    packet.rng[lane]);
+                }
+            }
+        }
+    }
+}
+
+void renderTileSingle(TileContext& ctx, const TileRayGenerator& gen, const PixelRect& tile,
+                      int spp) {
+    Pcg32 rng;
+    for (int s = 0; s < spp; ++s) {
+        for (int y = tile.y0; y < tile.y1; ++y) {
+            for (int x = tile.x0; x < tile.x1; ++x) {
+                const Ray ray = gen.sampleRay(x, y, s, rng);
+                ++ctx.cameraRays;
+                ctx.shadeSample(x, y, ray, ctx.world.accel->intersect(ray), rng);
+            }
+        }
+    }
+}
+
+}  // namespace
+
+int resolvePacketWidth(PacketMode mode, const Accel& accel) {
+    switch (mode) {
+        case PacketMode::Packet8: return 8;
+        case PacketMode::Packet16: return 16;
+        case PacketMode::Single: return 1;
+        case PacketMode::Auto: break;
+    }
+    // Embree emulates wider packets on narrower ISAs, so anything but 16 means 8.
+    return accel.nativePacketWidth() == 16 ? 16 : 8;
+}
+
+RenderStats renderImage(const World& world, const Camera& camera, const Integrator& integrator,
+                        Film& film, const RenderOptions& options) {
+    if (options.spp < 1) fail("samples per pixel must be at least 1, got ", options.spp);
+    if (options.tileSize < 1) fail("tile size must be at least 1, got ", options.tileSize);
+    const auto start = std::chrono::steady_clock::now();
+    const std::vector<PixelRect> tiles = cutTiles(film.crop(), options.tileSize);
+    const TileRayGenerator generator(camera, options.seed, options.spp);
+
+    RenderStats result;
+    result.packetWidth = resolvePacketWidth(options.packets, *world.accel);
+    std::atomic<uint64_t> cameraRays{0}, shadowRays{0};
+    if (options.progress) options.progress->begin("render", tiles.size());
+
+    tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+        // Grain 1: tiles are the unit of load balancing; they vary a lot in cost.
+        tbb::parallel_for(
+            tbb::blocked_range<size_t>(0, tiles.size(), 1),
+            [&](const tbb::blocked_range<size_t>& range) {
+                for (size_t i = range.begin(); i != range.end(); ++i) {
+                    TileContext ctx{world, integrator, film, {}, 0};
+                    switch (result.packetWidth) {
+                        case 16: renderTilePackets<16>(ctx, generator, tiles[i], options.spp); break;
+                        case 8: renderTilePackets<8>(ctx, generator, tiles[i], options.spp); break;
+                        default: renderTileSingle(ctx, generator, tiles[i], options.spp); break;
+                    }
+                    cameraRays += ctx.cameraRays;
+                    shadowRays += ctx.stats.shadowRays;
+                    if (options.progress) options.progress->advance(1);
+                }
+            },
+            tbb::simple_partitioner());
+    });
+
+    if (options.progress) options.progress->end();
+    result.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    result.cameraRays = cameraRays;
+    result.shadowRays = shadowRays;
+    return result;
+}
+
+}  // namespace strahl

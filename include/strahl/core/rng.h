@@ -20,6 +20,7 @@ constexpr uint64_t mixBits(uint64_t v) {
 // PCG32 (O'Neill 2014, pcg32_random_r): small state, good statistics, streams.
 class Pcg32 {
 public:
+    Pcg32() { reseed(0, 0); }
     Pcg32(uint64_t seed, uint64_t stream) { reseed(seed, stream); }
 
     void reseed(uint64_t seed, uint64_t stream) {

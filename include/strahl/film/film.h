@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "strahl/core/math.h"
+#include "strahl/core/pixel_rect.h"
 
 namespace strahl {
 
@@ -21,14 +22,6 @@ enum class AovKind {
 
 const char* aovName(AovKind kind);  // "normal", "depth", "albedo"
 int aovChannels(AovKind kind);      // 3, 1, 3
-
-// Half-open pixel rectangle [x0, x1) x [y0, y1); y = 0 is the top row.
-struct PixelRect {
-    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-    int width() const { return x1 - x0; }
-    int height() const { return y1 - y0; }
-    bool empty() const { return x1 <= x0 || y1 <= y0; }
-};
 
 // First-hit values of one camera sample, for the AOVs.
 struct AovSample {

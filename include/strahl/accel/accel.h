@@ -1,0 +1,63 @@
+#pragma once
+// Accel: the ray-query interface every tracer of strahl implements — Embree's
+// BVH here, the naive loop over all primitives in the reference module. Callers
+// never see Embree types: packets are strahl's own SoA layout (core/packet.h).
+//
+// Geometry IDs are stable and computable: the i-th mesh handed to a builder has
+// geomID i, and primID is the triangle index within that mesh.
+
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <span>
+
+#include "strahl/core/bounds.h"
+#include "strahl/core/packet.h"
+#include "strahl/core/ray.h"
+#include "strahl/geometry/triangle_mesh.h"
+
+namespace strahl {
+
+// How camera packets should be traced.
+enum class RayCoherence { Coherent, Incoherent };
+
+class Accel {
+public:
+    virtual ~Accel() = default;
+
+    // Closest hit in (ray.tnear, ray.tfar); an invalid Hit if none.
+    virtual Hit intersect(const Ray& ray) const = 0;
+    // Any hit in (ray.tnear, ray.tfar).
+    virtual bool occluded(const Ray& ray) const = 0;
+
+    // Packet queries: lanes with valid[i] == -1 are traced, 0 are ignored. On
+    // return a lane's geomID is kInvalidId for a miss; otherwise tfar, u, v, Ng,
+    // primID and geomID describe the closest hit.
+    virtual void intersect8(const int* valid, RayHitPacket8& packet, RayCoherence c) const = 0;
+    virtual void intersect16(const int* valid, RayHitPacket16& packet, RayCoherence c) const = 0;
+
+    // The widest packet the implementation traces natively (16, 8 or 1).
+    virtual int nativePacketWidth() const = 0;
+
+    virtual Bounds3 bounds() const = 0;
+    // Bytes held by the acceleration structure itself (not the meshes).
+    virtual size_t memoryBytes() const = 0;
+};
+
+struct AccelBuildOptions {
+    int threads = 0;  // 0: all hardware threads
+    // Called with the build's progress fraction in [0, 1], possibly from several
+    // threads at once; must not throw.
+    std::function<void(double)> progress;
+};
+
+// Builds an Embree BVH over the meshes (which must outlive the Accel; their
+// vertex buffers are shared with Embree, not copied, when reservePadding() was
+// called). Throws strahl::Error if Embree reports an error.
+std::unique_ptr<Accel> buildEmbreeAccel(std::span<const TriangleMesh* const> meshes,
+                                        const AccelBuildOptions& options);
+
+// Embree's version string, e.g. "3.13.5", and the ISA it picked at run time.
+const char* embreeVersion();
+
+}  // namespace strahl

@@ -1,0 +1,44 @@
+#pragma once
+// The render loop: the crop window is cut into square tiles rendered in
+// parallel by oneTBB; inside a tile, camera rays are generated and traced as
+// coherent packets (camera/tile_rays.h) and every lane's hit is shaded by the
+// integrator. Pixels belong to exactly one tile and samples are accumulated in
+// sample order, so the image is bit-identical for any thread count.
+
+#include <cstdint>
+
+#include "strahl/camera/camera.h"
+#include "strahl/film/film.h"
+#include "strahl/integrator/integrator.h"
+#include "strahl/integrator/world.h"
+#include "strahl/render/progress.h"
+
+namespace strahl {
+
+// How camera rays are traced: packets of the native width (16 with AVX-512,
+// else 8), a forced width, or one ray at a time (for comparison).
+enum class PacketMode { Auto, Packet8, Packet16, Single };
+
+struct RenderOptions {
+    int threads = 0;     // 0: all hardware threads
+    int tileSize = 32;   // pixels per tile side; a multiple of 4 keeps packets full
+    int spp = 1;
+    uint64_t seed = 0;
+    PacketMode packets = PacketMode::Auto;
+    ProgressReporter* progress = nullptr;
+};
+
+struct RenderStats {
+    double seconds = 0.0;
+    uint64_t cameraRays = 0;
+    uint64_t shadowRays = 0;
+    int packetWidth = 1;  // the width actually used
+};
+
+// The packet width `mode` resolves to on this accelerator.
+int resolvePacketWidth(PacketMode mode, const Accel& accel);
+
+RenderStats renderImage(const World& world, const Camera& camera, const Integrator& integrator,
+                        Film& film, const RenderOptions& options);
+
+}  // namespace strahl

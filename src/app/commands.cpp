@@ -1,0 +1,165 @@
+#include "commands.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+
+#include "strahl/core/error.h"
+#include "strahl/film/image_output.h"
+#include "strahl/render/progress.h"
+#include "strahl/render/renderer.h"
+#include "strahl/scene/scene_builder.h"
+#include "strahl/scene/scene_desc.h"
+
+namespace strahl::app {
+
+namespace {
+
+// The largest image strahl agrees to allocate: 2^28 pixels (16384^2), about
+// 9 GiB of film buffers with all AOVs.
+constexpr long long kMaxPixels = 1LL << 28;
+
+AovKind parseAov(const std::string& name) {
+    if (name == "normal") return AovKind::Normal;
+    if (name == "depth") return AovKind::Depth;
+    return AovKind::Albedo;  // the CLI only admits the three names
+}
+
+// Applies the command-line overrides to the scene description.
+void applyOverrides(const Options& o, SceneDesc& desc) {
+    if (o.width) desc.film.width = *o.width;
+    if (o.height) desc.film.height = *o.height;
+    if (o.spp) desc.render.spp = *o.spp;
+    if (o.integrator) desc.render.integrator = *o.integrator;
+    if (o.seed) desc.render.seed = *o.seed;
+    if (o.exrFloat) desc.film.exrFloat = true;
+    if (!o.aovs.empty()) {
+        desc.film.aovs.clear();
+        for (const std::string& a : o.aovs) {
+            const AovKind kind = parseAov(a);
+            if (std::find(desc.film.aovs.begin(), desc.film.aovs.end(), kind) == desc.film.aovs.end())
+                desc.film.aovs.push_back(kind);
+        }
+    }
+    if (!o.outputs.empty()) {
+        desc.film.outputs.clear();
+        for (const std::string& out : o.outputs) desc.film.outputs.emplace_back(out);  // relative to cwd
+    }
+}
+
+PixelRect cropWindow(const Options& o, const SceneDesc& desc) {
+    const PixelRect full{0, 0, desc.film.width, desc.film.height};
+    if (!o.crop) return full;
+    const PixelRect& c = *o.crop;
+    if (c.x1 > full.x1 || c.y1 > full.y1)
+        fail("--crop ", c.x0, ",", c.y0, ",", c.x1, ",", c.y1, " exceeds the ", full.x1, "x",
+             full.y1, " image");
+    return c;
+}
+
+std::string humanCount(double n) {
+    char buf[32];
+    if (n >= 1e9) std::snprintf(buf, sizeof buf, "%.2fG", n / 1e9);
+    else if (n >= 1e6) std::snprintf(buf, sizeof buf, "%.2fM", n / 1e6);
+    else if (n >= 1e3) std::snprintf(buf, sizeof buf, "%.1fk", n / 1e3);
+    else std::snprintf(buf, sizeof buf, "%.0f", n);
+    return buf;
+}
+
+}  // namespace
+
+int runRender(const Options& o) {
+    SceneDesc desc = parseSceneFile(o.scene);
+    applyOverrides(o, desc);
+    if (static_cast<long long>(desc.film.width) * desc.film.height > kMaxPixels)
+        fail("image of ", desc.film.width, "x", desc.film.height, " pixels is larger than the limit of ",
+             kMaxPixels, " pixels");
+    if (desc.film.outputs.empty())
+        fail(o.scene, ": no output image: give -o FILE or film.outputs in the scene");
+    // Fail on a bad output path or integrator name now, not after a long render.
+    for (const auto& out : desc.film.outputs) checkOutputPath(out);
+    const PixelRect crop = cropWindow(o, desc);
+
+    ProgressReporter progress(ProgressReporter::defaultStyle(o.quiet));
+    BuildOptions build;
+    build.threads = o.threads.value_or(0);
+    build.bvhStarted = [&] { progress.begin("bvh", 1); };
+    build.bvhProgress = [&](double f) { progress.setFraction(f); };
+    BuildTimings timings;
+    const World world = buildWorld(desc, build, &timings);
+    progress.end();
+
+    const Camera camera = buildCamera(desc.camera, desc.film.width, desc.film.height);
+    const auto integrator = makeIntegrator(desc.render.integrator, world);
+    Film film(desc.film.width, desc.film.height, crop, desc.film.aovs);
+
+    RenderOptions options;
+    options.threads = o.threads.value_or(0);
+    options.tileSize = o.tileSize;
+    options.spp = desc.render.spp;
+    options.seed = desc.render.seed;
+    options.packets = o.packets;
+    options.progress = &progress;
+    const RenderStats stats = renderImage(world, camera, *integrator, film, options);
+
+    OutputSettings output;
+    output.exrFloat = desc.film.exrFloat;
+    output.color = o.color;
+    ImageMetadata metadata;
+    metadata.renderSeconds = stats.seconds;
+    metadata.spp = desc.render.spp;
+    metadata.integrator = desc.render.integrator;
+    metadata.camera = describeCamera(desc.camera);
+    metadata.worldToCamera = camera.worldToCamera();
+    metadata.extra["seed"] = std::to_string(desc.render.seed);
+    metadata.extra["scene"] = desc.file.filename().string();
+    for (const auto& out : desc.film.outputs) {
+        writeImage(film, out, output, metadata);
+        if (!o.quiet) std::fprintf(stderr, "wrote %s\n", out.string().c_str());
+    }
+
+    if (!o.quiet) {
+        const double rays = static_cast<double>(stats.cameraRays + stats.shadowRays);
+        std::fprintf(stderr,
+                     "summary: load %.2f s, bvh %.2f s, render %.2f s | %s rays (%s camera, %s "
+                     "shadow), %.1f Mrays/s | %s, %d spp, %s\n",
+                     timings.loadSeconds, timings.bvhSeconds, stats.seconds,
+                     humanCount(rays).c_str(), humanCount(double(stats.cameraRays)).c_str(),
+                     humanCount(double(stats.shadowRays)).c_str(),
+                     stats.seconds > 0 ? rays / stats.seconds / 1e6 : 0.0,
+                     desc.render.integrator.c_str(), desc.render.spp,
+                     stats.packetWidth > 1 ? ("packets of " + std::to_string(stats.packetWidth)).c_str()
+                                           : "single rays");
+    }
+    return 0;
+}
+
+int runInfo(const Options& o) {
+    const SceneDesc desc = parseSceneFile(o.scene);
+    BuildTimings timings;
+    const World world = buildWorld(desc, BuildOptions{}, &timings);
+    const Bounds3 b = world.bounds();
+    std::printf("scene      %s\n", desc.file.string().c_str());
+    std::printf("shapes     %zu\n", world.meshes.size());
+    for (size_t i = 0; i < world.meshes.size(); ++i) {
+        const TriangleMesh& m = world.meshes[i].mesh;
+        std::printf("  [%zu] %-24s %10zu triangles %10zu vertices%s%s\n", i,
+                    world.meshes[i].name.c_str(), m.triangleCount(), m.vertexCount(),
+                    m.normals.empty() ? "" : " normals", m.uvs.empty() ? "" : " uvs");
+    }
+    std::printf("triangles  %zu\n", world.triangleCount());
+    std::printf("materials  %zu\n", world.materials.size());
+    std::printf("lights     %zu\n", world.lights.size());
+    std::printf("bounds     (%g, %g, %g) - (%g, %g, %g)\n", b.min.x, b.min.y, b.min.z, b.max.x,
+                b.max.y, b.max.z);
+    std::printf("memory     meshes %.1f MiB, bvh %.1f MiB\n",
+                double(world.meshMemoryBytes()) / (1 << 20), double(world.accel->memoryBytes()) / (1 << 20));
+    std::printf("camera     %s\n", describeCamera(desc.camera).c_str());
+    std::printf("film       %dx%d, %d spp, integrator %s\n", desc.film.width, desc.film.height,
+                desc.render.spp, desc.render.integrator.c_str());
+    std::printf("timing     load %.2f s, bvh %.2f s\n", timings.loadSeconds, timings.bvhSeconds);
+    std::printf("embree     %s, packets of %d\n", embreeVersion(), resolvePacketWidth(PacketMode::Auto, *world.accel));
+    return 0;
+}
+
+}  // namespace strahl::app

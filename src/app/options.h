@@ -1,0 +1,39 @@
+#pragma once
+// The command line of strahl: the usage text and the Options it fills. No
+// rendering logic lives here (that is commands.cpp and the library).
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "strahl/core/pixel_rect.h"
+#include "strahl/film/display_transform.h"
+#include "strahl/render/renderer.h"
+
+namespace strahl::app {
+
+enum class Command { None, Render, Info };
+
+struct Options {
+    Command command = Command::None;
+    std::string scene;
+    // render
+    std::vector<std::string> outputs;  // overrides the scene's film.outputs
+    std::optional<int> width, height, spp, threads;
+    std::optional<std::string> integrator;
+    std::optional<uint64_t> seed;
+    std::optional<PixelRect> crop;
+    std::vector<std::string> aovs;  // overrides film.aovs when given
+    bool exrFloat = false;
+    bool quiet = false;
+    PacketMode packets = PacketMode::Auto;
+    int tileSize = 32;
+    ColorSettings color;
+};
+
+// Parses argv. Returns an exit code to stop with (0 after --help/--version,
+// 2 after a usage error, with the message printed), or nullopt to go on.
+std::optional<int> parseOptions(int argc, char** argv, Options& options);
+
+}  // namespace strahl::app

@@ -1,0 +1,81 @@
+#include "strahl/camera/camera.h"
+
+#include <cmath>
+
+#include "strahl/core/error.h"
+
+namespace strahl {
+
+CameraFrame CameraFrame::fromBackUp(const Vec3& eye, const Vec3& back, const Vec3& up) {
+    const float backLength = glm::length(back);
+    if (!(backLength > 0.0f) || !std::isfinite(backLength))
+        fail("camera: the back (w) direction must be a finite non-zero vector");
+    CameraFrame f;
+    f.e = eye;
+    f.w = back / backLength;
+    // u = up x w, normalised; the hint need not be orthogonal to w, only not parallel.
+    const Vec3 u = glm::cross(up, f.w);
+    const float uLength = glm::length(u);
+    // sin(angle(up, w)) below ~1e-6 leaves u dominated by rounding: reject it.
+    if (!(uLength > 1e-6f * glm::length(up)))
+        fail("camera: the up vector is zero or parallel to the viewing direction");
+    f.u = u / uLength;
+    f.v = glm::cross(f.w, f.u);  // completes the right-handed frame, so u = v x w
+    return f;
+}
+
+CameraFrame CameraFrame::lookAt(const Vec3& eye, const Vec3& target, const Vec3& up) {
+    if (eye == target) fail("camera: eye and look_at are the same point");
+    return fromBackUp(eye, eye - target, up);
+}
+
+Camera::Camera(const CameraFrame& frame, Projection projection, ImageWindow window,
+               float focalDistance, int nx, int ny)
+    : frame_(frame), projection_(projection), window_(window), d_(focalDistance), nx_(nx), ny_(ny) {
+    if (nx <= 0 || ny <= 0) fail("camera: image size must be positive, got ", nx, "x", ny);
+    if (!(window.l < 0.0f && 0.0f < window.r && window.b < 0.0f && 0.0f < window.t))
+        fail("camera: the image window must satisfy l < 0 < r and b < 0 < t");
+    if (!(focalDistance > 0.0f) || !std::isfinite(focalDistance))
+        fail("camera: the focal distance must be positive and finite");
+}
+
+ImageWindow Camera::windowFromFov(float fovY, float focalDistance, int nx, int ny) {
+    ImageWindow w;
+    w.t = focalDistance * std::tan(0.5f * fovY);
+    w.b = -w.t;
+    w.r = w.t * static_cast<float>(nx) / static_cast<float>(ny);
+    w.l = -w.r;
+    return w;
+}
+
+Ray Camera::generateRay(float x, float y) const {
+    const float u = window_.l + (window_.r - window_.l) * x / static_cast<float>(nx_);
+    const float v = window_.t + (window_.b - window_.t) * y / static_cast<float>(ny_);
+    Ray ray;
+    if (projection_ == Projection::Orthographic) {
+        ray.origin = frame_.e + u * frame_.u + v * frame_.v;
+        ray.dir = -frame_.w;
+    } else {
+        const Vec3 onPlane = -d_ * frame_.w + u * frame_.u + v * frame_.v;
+        ray.origin = frame_.e + onPlane;
+        ray.dir = glm::normalize(onPlane);
+    }
+    ray.tnear = 0.0f;
+    ray.tfar = kInfinity;
+    return ray;
+}
+
+Mat4 Camera::worldToCamera() const {
+    // Rows are u, v, w; the translation moves e to the origin. GLM is column-major.
+    Mat4 m(1.0f);
+    for (int c = 0; c < 3; ++c) {
+        m[c][0] = frame_.u[c];
+        m[c][1] = frame_.v[c];
+        m[c][2] = frame_.w[c];
+    }
+    m[3] = Vec4(-glm::dot(frame_.u, frame_.e), -glm::dot(frame_.v, frame_.e),
+                -glm::dot(frame_.w, frame_.e), 1.0f);
+    return m;
+}
+
+}  // namespace strahl

@@ -1,0 +1,16 @@
+#pragma once
+// Internal: Whitted-style direct lighting (see strahl/integrator/integrator.h).
+
+#include "strahl/integrator/integrator.h"
+
+namespace strahl {
+
+class DirectIntegrator final : public Integrator {
+public:
+    std::string_view name() const override { return "direct"; }
+    Color shade(const World& world, const Ray& ray, const Hit& hit, const SurfaceInteraction& si,
+                Pcg32& rng, ShadingStats& stats) const override;
+    Color miss(const World& world, const Ray&) const override { return world.background; }
+};
+
+}  // namespace strahl

@@ -1,0 +1,27 @@
+#include <array>
+
+#include "debug_integrators.h"
+#include "direct_integrator.h"
+#include "strahl/core/error.h"
+
+namespace strahl {
+
+namespace {
+constexpr std::array<std::string_view, 5> kNames = {"eyelight", "normal", "depth", "primid",
+                                                    "direct"};
+}
+
+std::span<const std::string_view> integratorNames() { return kNames; }
+
+std::unique_ptr<Integrator> makeIntegrator(std::string_view name, const World& world) {
+    if (name == "eyelight") return std::make_unique<EyelightIntegrator>();
+    if (name == "normal") return std::make_unique<NormalIntegrator>();
+    if (name == "depth") return std::make_unique<DepthIntegrator>(world);
+    if (name == "primid") return std::make_unique<PrimIdIntegrator>();
+    if (name == "direct") return std::make_unique<DirectIntegrator>();
+    std::string valid;
+    for (std::string_view n : kNames) valid += (valid.empty() ? "" : ", ") + std::string(n);
+    fail("unknown integrator '", name, "' (valid: ", valid, ")");
+}
+
+}  // namespace strahl

@@ -1,0 +1,154 @@
+#include "strahl/scene/scene_builder.h"
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+#include <exception>
+#include <map>
+#include <sstream>
+
+#include "strahl/core/error.h"
+#include "strahl/meshio/mesh_file.h"
+
+namespace strahl {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Reads (or copies) one shape's mesh in object space with its file materials.
+LoadedMesh loadShape(const ShapeDesc& shape) {
+    if (shape.file.empty()) return LoadedMesh{shape.inlineMesh, {}};
+    return loadMeshFile(shape.file);
+}
+
+std::string shapeSource(const SceneDesc& desc, const ShapeDesc& shape) {
+    return concat(desc.file.filename().string(), ": ", shape.where,
+                  shape.file.empty() ? std::string() : " (" + shape.file.string() + ")");
+}
+
+}  // namespace
+
+World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTimings* timings) {
+    const auto loadStart = Clock::now();
+    World world;
+    world.background = desc.background;
+
+    // Material table: 0 is the built-in default, then the scene's own, then the
+    // materials of mesh files, named "<shape>/<material>".
+    std::map<std::string, uint32_t> byName;
+    world.materials.push_back(Material{"default", Color(0.8f), Color(0.0f)});
+    byName["default"] = 0;
+    for (const MaterialDesc& m : desc.materials) {
+        byName[m.name] = static_cast<uint32_t>(world.materials.size());
+        world.materials.push_back(Material{m.name, m.diffuse, m.emission});
+    }
+
+    // Load every mesh file in parallel; the first error (in shape order) wins so
+    // the message does not depend on thread timing.
+    std::vector<LoadedMesh> loaded(desc.shapes.size());
+    std::vector<std::exception_ptr> errors(desc.shapes.size());
+    tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+        tbb::parallel_for(size_t(0), desc.shapes.size(), [&](size_t i) {
+            try {
+                LoadedMesh mesh = loadShape(desc.shapes[i]);
+                mesh.mesh.transform(desc.shapes[i].transform);
+                mesh.mesh.validate(shapeSource(desc, desc.shapes[i]));
+                if (mesh.mesh.triangleCount() == 0)
+                    fail(shapeSource(desc, desc.shapes[i]), ": the mesh has no triangles");
+                loaded[i] = std::move(mesh);
+            } catch (...) {
+                errors[i] = std::current_exception();
+            }
+        });
+    });
+    for (const std::exception_ptr& e : errors)
+        if (e) std::rethrow_exception(e);
+
+    world.meshes.reserve(desc.shapes.size());
+    for (size_t i = 0; i < desc.shapes.size(); ++i) {
+        const ShapeDesc& shape = desc.shapes[i];
+        MeshGeometry geometry;
+        geometry.name = shape.name;
+        geometry.mesh = std::move(loaded[i].mesh);
+        geometry.mesh.reservePadding();
+        if (!shape.material.empty()) {
+            // One material for the whole shape overrides the file's own.
+            const auto found = byName.find(shape.material);
+            if (found == byName.end())
+                fail(shapeSource(desc, shape), ": unknown material '", shape.material, "'");
+            geometry.mesh.faceMaterials.clear();
+            geometry.materialOfSlot = {found->second};
+        } else if (loaded[i].materials.empty()) {
+            geometry.mesh.faceMaterials.clear();
+            geometry.materialOfSlot = {0};
+        } else {
+            for (const MeshMaterial& m : loaded[i].materials) {
+                geometry.materialOfSlot.push_back(static_cast<uint32_t>(world.materials.size()));
+                world.materials.push_back(Material{shape.name + "/" + m.name, m.diffuse, m.emission});
+            }
+        }
+        world.meshes.push_back(std::move(geometry));
+    }
+
+    for (const LightDesc& l : desc.lights) {
+        Light light;
+        light.type = l.type == LightType::Point ? Light::Type::Point : Light::Type::Directional;
+        light.position = l.position;
+        light.direction = glm::normalize(l.direction);
+        light.intensity = l.intensity;
+        light.irradiance = l.irradiance;
+        world.lights.push_back(light);
+    }
+    if (timings) timings->loadSeconds = secondsSince(loadStart);
+
+    const auto bvhStart = Clock::now();
+    if (options.bvhStarted) options.bvhStarted();
+    std::vector<const TriangleMesh*> meshes;
+    for (const MeshGeometry& g : world.meshes) meshes.push_back(&g.mesh);
+    AccelBuildOptions accelOptions;
+    accelOptions.threads = options.threads;
+    accelOptions.progress = options.bvhProgress;
+    world.accel = buildEmbreeAccel(meshes, accelOptions);
+    if (timings) timings->bvhSeconds = secondsSince(bvhStart);
+    return world;
+}
+
+Camera buildCamera(const CameraDesc& desc, int width, int height) {
+    const CameraFrame frame = desc.back ? CameraFrame::fromBackUp(desc.eye, *desc.back, desc.up)
+                                        : CameraFrame::lookAt(desc.eye, desc.lookAt.value_or(Vec3(0.0f)),
+                                                              desc.up);
+    ImageWindow window;
+    if (desc.window) {
+        window = *desc.window;
+    } else if (desc.projection == Projection::Perspective) {
+        const float fovDegrees = desc.fovYDegrees.value_or(45.0f);
+        window = Camera::windowFromFov(glm::radians(fovDegrees), desc.focalDistance, width, height);
+    }
+    return Camera(frame, desc.projection, window, desc.focalDistance, width, height);
+}
+
+std::string describeCamera(const CameraDesc& desc) {
+    std::ostringstream out;
+    out << (desc.projection == Projection::Perspective ? "perspective" : "orthographic") << " eye ("
+        << desc.eye.x << "," << desc.eye.y << "," << desc.eye.z << ")";
+    if (desc.back)
+        out << " back (" << desc.back->x << "," << desc.back->y << "," << desc.back->z << ")";
+    else if (desc.lookAt)
+        out << " look_at (" << desc.lookAt->x << "," << desc.lookAt->y << "," << desc.lookAt->z << ")";
+    out << " d " << desc.focalDistance;
+    if (desc.window)
+        out << " window [" << desc.window->l << "," << desc.window->r << "," << desc.window->b << ","
+            << desc.window->t << "]";
+    else if (desc.projection == Projection::Perspective)
+        out << " fov " << desc.fovYDegrees.value_or(45.0f);
+    return out.str();
+}
+
+}  // namespace strahl
