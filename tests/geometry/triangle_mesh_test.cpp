@@ -1,0 +1,93 @@
+#include "strahl/geometry/triangle_mesh.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "strahl/core/error.h"
+
+namespace strahl {
+namespace {
+
+TriangleMesh oneTriangle() {
+    TriangleMesh m;
+    m.positions = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}};
+    m.indices = {0, 1, 2};
+    return m;
+}
+
+TEST(TriangleMesh, InteractionRebuildsThePointFromBarycentrics) {
+    TriangleMesh m = oneTriangle();
+    m.uvs = {{0, 0}, {1, 0}, {0, 1}};
+    const SurfaceInteraction si = triangleInteraction(m, 0, 0.25f, 0.5f);
+    EXPECT_FLOAT_EQ(si.p.x, 0.5f);
+    EXPECT_FLOAT_EQ(si.p.y, 1.0f);
+    EXPECT_EQ(si.p.z, 0.0f);
+    EXPECT_EQ(si.Ng, Vec3(0, 0, 1));
+    EXPECT_EQ(si.Ns, si.Ng);
+    EXPECT_FLOAT_EQ(si.uv.x, 0.25f);
+    EXPECT_FLOAT_EQ(si.uv.y, 0.5f);
+    EXPECT_GT(si.pError.x, 0.0f);
+    EXPECT_LT(si.pError.x, 1e-5f);
+}
+
+TEST(TriangleMesh, ShadingNormalsAreInterpolatedAndGeometricNormalFollowsThem) {
+    TriangleMesh m = oneTriangle();
+    m.normals = {{0, 0, -1}, {0, 0, -1}, {0, 0, -1}};  // authored facing the other way
+    const SurfaceInteraction si = triangleInteraction(m, 0, 0.2f, 0.2f);
+    EXPECT_EQ(si.Ns, Vec3(0, 0, -1));
+    EXPECT_EQ(si.Ng, Vec3(0, 0, -1));
+}
+
+TEST(TriangleMesh, TransformMovesPointsAndKeepsNormalsUnitAndPerpendicular) {
+    TriangleMesh m = oneTriangle();
+    m.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+    Mat4 t(1.0f);
+    t[0][0] = 3.0f;             // non-uniform scale in x
+    t[3] = Vec4(1, 2, 3, 1);    // translation
+    m.transform(t);
+    EXPECT_EQ(m.positions[1], Vec3(7, 2, 3));
+    EXPECT_FLOAT_EQ(glm::length(m.normals[0]), 1.0f);
+}
+
+TEST(TriangleMesh, MirroringTransformKeepsFrontFaces) {
+    TriangleMesh m = oneTriangle();
+    Mat4 mirror(1.0f);
+    mirror[0][0] = -1.0f;
+    m.transform(mirror);
+    const SurfaceInteraction si = triangleInteraction(m, 0, 0.2f, 0.2f);
+    EXPECT_EQ(si.Ng, Vec3(0, 0, 1));  // still facing +z
+}
+
+TEST(TriangleMesh, ValidateNamesTheProblem) {
+    TriangleMesh bad = oneTriangle();
+    bad.indices[2] = 3;
+    try {
+        bad.validate("mesh.ply");
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("mesh.ply: triangle 0 refers to vertex 3"),
+                  std::string::npos)
+            << e.what();
+    }
+    TriangleMesh nan = oneTriangle();
+    nan.positions[1].y = std::nanf("");
+    EXPECT_THROW(nan.validate("x"), Error);
+    TriangleMesh inf = oneTriangle();
+    inf.positions[0].x = kInfinity;
+    EXPECT_THROW(inf.validate("x"), Error);
+    TriangleMesh normals = oneTriangle();
+    normals.normals = {{0, 0, 1}};
+    EXPECT_THROW(normals.validate("x"), Error);
+    EXPECT_NO_THROW(oneTriangle().validate("x"));
+}
+
+TEST(TriangleMesh, BoundsAndPadding) {
+    TriangleMesh m = oneTriangle();
+    EXPECT_EQ(m.bounds().max, Vec3(2, 2, 0));
+    m.reservePadding();
+    EXPECT_TRUE(m.isPadded());
+}
+
+}  // namespace
+}  // namespace strahl
