@@ -1,0 +1,19 @@
+#pragma once
+// The benchmark mesh: a real scan subdivided to at least a million triangles.
+
+#include <string>
+
+#include "strahl/geometry/triangle_mesh.h"
+
+namespace strahl::bench {
+
+// Splits every triangle into four at its edge midpoints (shared midpoints, so
+// the surface stays watertight); the shape is unchanged, the count grows 4x.
+TriangleMesh subdivideMidpoints(const TriangleMesh& mesh);
+
+// Loads `path` (or, if empty, ../shared/data's Armadillo, else a procedural
+// sphere) and subdivides until it has at least minTriangles. `description`
+// receives what was used.
+TriangleMesh benchmarkMesh(const std::string& path, size_t minTriangles, std::string& description);
+
+}  // namespace strahl::bench

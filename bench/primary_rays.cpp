@@ -1,0 +1,199 @@
+// Primary-ray throughput at 1024x1024 on a mesh of at least 1M triangles:
+//   (a) bare:     pre-generated 16/8-wide camera packets traced with
+//                 Accel::intersect16/8 (rtcIntersect16/8), no shading: the limit;
+//   (b) eyelight: strahl's full render path (ray generation, packets, surface
+//                 interaction, eyelight shading, film);
+//   (c) single:   the same render with one rtcIntersect1 per camera ray.
+// Targets (issue 2): (b) >= 0.8 x (a) and (b) >= 2 x (c), as throughput ratios.
+// The three cases run in five interleaved rounds in one process (so slow drifts
+// of a shared machine hit all of them alike); the ratios use each case's fastest
+// round, the one least disturbed by other load.
+//
+// Usage: bench_primary_rays [--mesh FILE] [google-benchmark flags]
+
+#include <benchmark/benchmark.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <string>
+
+#include "bench_mesh.h"
+#include "strahl/camera/tile_rays.h"
+#include "strahl/integrator/integrator.h"
+#include "strahl/render/renderer.h"
+
+namespace strahl::bench {
+namespace {
+
+constexpr int kSize = 1024;
+constexpr int kTile = 32;
+constexpr size_t kMinTriangles = 1'000'000;
+
+struct Fixture {
+    World world;
+    Camera camera{CameraFrame{}, Projection::Perspective, ImageWindow{}, 1.0f, kSize, kSize};
+    std::string meshDescription;
+    int width = 16;
+};
+
+Fixture& fixture(const std::string& meshPath = {}) {
+    static Fixture f = [&] {
+        Fixture fx;
+        MeshGeometry g;
+        g.name = "bench";
+        g.mesh = benchmarkMesh(meshPath, kMinTriangles, fx.meshDescription);
+        g.materialOfSlot = {0};
+        fx.world.materials.push_back(Material{"default", Color(0.8f), Color(0.0f)});
+        fx.world.meshes.push_back(std::move(g));
+        const TriangleMesh* meshes[] = {&fx.world.meshes[0].mesh};
+        fx.world.accel = buildEmbreeAccel(meshes, {});
+        // Frame the bounding box from the front, filling most of the image.
+        const Bounds3 b = fx.world.bounds();
+        const float radius = 0.5f * glm::length(b.diagonal());
+        const Vec3 eye = b.center() + Vec3(0.0f, 0.0f, 2.2f * radius);
+        fx.camera = Camera(CameraFrame::lookAt(eye, b.center(), Vec3(0, 1, 0)),
+                           Projection::Perspective,
+                           Camera::windowFromFov(glm::radians(40.0f), 1.0f, kSize, kSize), 1.0f,
+                           kSize, kSize);
+        fx.width = resolvePacketWidth(PacketMode::Auto, *fx.world.accel);
+        return fx;
+    }();
+    return f;
+}
+
+std::vector<PixelRect> tiles() {
+    std::vector<PixelRect> t;
+    for (int y = 0; y < kSize; y += kTile)
+        for (int x = 0; x < kSize; x += kTile) t.push_back({x, y, x + kTile, y + kTile});
+    return t;
+}
+
+template <int N>
+void bareLoop(benchmark::State& state) {
+    Fixture& f = fixture();
+    const TileRayGenerator gen(f.camera, 0, 1);
+    const std::vector<PixelRect> tileList = tiles();
+    // Ray generation is outside the timed loop: only traversal is measured.
+    std::vector<std::vector<CameraPacket<N>>> packets(tileList.size());
+    for (size_t i = 0; i < tileList.size(); ++i) {
+        const PixelRect& t = tileList[i];
+        for (int by = t.y0; by < t.y1; by += CameraPacket<N>::kBlockHeight)
+            for (int bx = t.x0; bx < t.x1; bx += CameraPacket<N>::kBlockWidth) {
+                packets[i].emplace_back();
+                gen.fillPacket(t, bx, by, 0, packets[i].back());
+            }
+    }
+    for (auto _ : state) {
+        tbb::parallel_for(
+            tbb::blocked_range<size_t>(0, packets.size(), 1),
+            [&](const tbb::blocked_range<size_t>& r) {
+                for (size_t i = r.begin(); i != r.end(); ++i) {
+                    for (const CameraPacket<N>& source : packets[i]) {
+                        RayHitPacket<N> p;
+                        std::memcpy(&p, &source.rays, sizeof p);  // fresh tfar/geomID
+                        if constexpr (N == 16)
+                            f.world.accel->intersect16(source.valid, p, RayCoherence::Coherent);
+                        else
+                            f.world.accel->intersect8(source.valid, p, RayCoherence::Coherent);
+                        benchmark::DoNotOptimize(p.geomID[0]);
+                    }
+                }
+            },
+            tbb::simple_partitioner());
+    }
+    state.counters["Mrays/s"] = benchmark::Counter(double(kSize) * kSize / 1e6,
+                                                   benchmark::Counter::kIsIterationInvariantRate);
+}
+
+void BM_Bare(benchmark::State& state) {
+    if (fixture().width == 16)
+        bareLoop<16>(state);
+    else
+        bareLoop<8>(state);
+}
+
+void renderLoop(benchmark::State& state, PacketMode mode) {
+    Fixture& f = fixture();
+    const auto integrator = makeIntegrator("eyelight", f.world);
+    RenderOptions options;
+    options.packets = mode;
+    options.tileSize = kTile;
+    for (auto _ : state) {
+        Film film(kSize, kSize, PixelRect{0, 0, kSize, kSize}, {});
+        renderImage(f.world, f.camera, *integrator, film, options);
+    }
+    state.counters["Mrays/s"] = benchmark::Counter(double(kSize) * kSize / 1e6,
+                                                   benchmark::Counter::kIsIterationInvariantRate);
+}
+
+void BM_EyelightPackets(benchmark::State& state) { renderLoop(state, PacketMode::Auto); }
+void BM_EyelightSingle(benchmark::State& state) { renderLoop(state, PacketMode::Single); }
+
+// Console output as usual, plus each case's fastest repetition for the ratios.
+class RatioReporter : public benchmark::ConsoleReporter {
+public:
+    void ReportRuns(const std::vector<Run>& runs) override {
+        ConsoleReporter::ReportRuns(runs);
+        for (const Run& run : runs) {
+            if (run.run_type != Run::RT_Iteration) continue;
+            const std::string name = run.run_name.function_name;
+            const double t = run.GetAdjustedRealTime();
+            auto [it, inserted] = best_.try_emplace(name, t);
+            if (!inserted) it->second = std::min(it->second, t);
+        }
+    }
+    double best(const std::string& name) const { return best_.at(name); }
+
+private:
+    std::map<std::string, double> best_;
+};
+
+}  // namespace
+}  // namespace strahl::bench
+
+int main(int argc, char** argv) {
+    using namespace strahl::bench;
+    std::string meshPath;
+    for (int i = 1; i + 1 < argc; ++i) {
+        if (std::strcmp(argv[i], "--mesh") == 0) {
+            meshPath = argv[i + 1];
+            for (int j = i; j + 2 <= argc; ++j) argv[j] = argv[j + 2];
+            argc -= 2;
+            break;
+        }
+    }
+    benchmark::Initialize(&argc, argv);
+    const Fixture& f = fixture(meshPath);
+    std::printf("mesh: %s, %zu triangles; image %dx%d; packets of %d\n", f.meshDescription.c_str(),
+                f.world.triangleCount(), kSize, kSize, f.width);
+
+    constexpr int kRounds = 5;
+    for (int round = 0; round < kRounds; ++round) {
+        for (auto [name, fn] : {std::pair{"BM_Bare", &BM_Bare},
+                                std::pair{"BM_EyelightPackets", &BM_EyelightPackets},
+                                std::pair{"BM_EyelightSingle", &BM_EyelightSingle}}) {
+            benchmark::RegisterBenchmark(name, fn)
+                ->Unit(benchmark::kMillisecond)
+                ->UseRealTime()
+                ->MinTime(0.5);
+        }
+    }
+    RatioReporter reporter;
+    benchmark::RunSpecifiedBenchmarks(&reporter);
+
+    const double bare = reporter.best("BM_Bare");
+    const double eyelight = reporter.best("BM_EyelightPackets");
+    const double single = reporter.best("BM_EyelightSingle");
+    const double rays = double(kSize) * kSize;
+    std::printf("\nfastest repetition, Mrays/s: (a) bare %.1f  (b) eyelight %.1f  (c) single %.1f\n",
+                rays / bare / 1e3, rays / eyelight / 1e3, rays / single / 1e3);
+    std::printf("ratio (b)/(a) = %.2f  (target >= 0.80) %s\n", bare / eyelight,
+                bare / eyelight >= 0.8 ? "PASS" : "MISS");
+    std::printf("ratio (b)/(c) = %.2f  (target >= 2.00) %s\n", single / eyelight,
+                single / eyelight >= 2.0 ? "PASS" : "MISS");
+    benchmark::Shutdown();
+    return 0;
+}
