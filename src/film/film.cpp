@@ -1,0 +1,120 @@
+#include "strahl/film/film.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "strahl/core/error.h"
+
+namespace strahl {
+
+const char* aovName(AovKind kind) {
+    switch (kind) {
+        case AovKind::Normal:
+            return "normal";
+        case AovKind::Depth:
+            return "depth";
+        case AovKind::Albedo:
+            return "albedo";
+    }
+    fail("invalid AovKind value ", static_cast<int>(kind));
+}
+
+int aovChannels(AovKind kind) {
+    switch (kind) {
+        case AovKind::Normal:
+            return 3;
+        case AovKind::Depth:
+            return 1;
+        case AovKind::Albedo:
+            return 3;
+    }
+    fail("invalid AovKind value ", static_cast<int>(kind));
+}
+
+Film::Film(int fullWidth, int fullHeight, PixelRect crop, std::vector<AovKind> aovs)
+    : fullWidth_(fullWidth), fullHeight_(fullHeight), crop_(crop), aovs_(std::move(aovs)) {
+    if (fullWidth_ <= 0 || fullHeight_ <= 0)
+        fail("film: image size ", fullWidth_, "x", fullHeight_, " is not positive");
+    if (crop_.empty() || crop_.x0 < 0 || crop_.y0 < 0 || crop_.x1 > fullWidth_ ||
+        crop_.y1 > fullHeight_)
+        fail("film: crop window [", crop_.x0, ", ", crop_.x1, ") x [", crop_.y0, ", ", crop_.y1,
+             ") is not a non-empty part of the ", fullWidth_, "x", fullHeight_, " image");
+    // Each AOV becomes a set of named EXR channels, so each may appear once.
+    for (auto it = aovs_.begin(); it != aovs_.end(); ++it) {
+        if (std::find(aovs_.begin(), it, *it) != it)
+            fail("film: AOV '", aovName(*it), "' is requested twice");
+    }
+
+    const size_t pixels = static_cast<size_t>(crop_.width()) * static_cast<size_t>(crop_.height());
+    radiance_.assign(pixels, Color(0.0f));
+    samples_.assign(pixels, 0u);
+    // AOV buffers exist only when requested; an empty buffer means "not stored".
+    for (AovKind kind : aovs_) {
+        switch (kind) {
+            case AovKind::Normal:
+                normal_.assign(pixels, Vec3(0.0f));
+                break;
+            case AovKind::Depth:
+                depth_.assign(pixels, 0.0f);
+                hits_.assign(pixels, 0u);
+                break;
+            case AovKind::Albedo:
+                albedo_.assign(pixels, Color(0.0f));
+                break;
+        }
+    }
+}
+
+size_t Film::index(int x, int y) const {
+    return static_cast<size_t>(y - crop_.y0) * static_cast<size_t>(crop_.width()) +
+           static_cast<size_t>(x - crop_.x0);
+}
+
+void Film::addSample(int x, int y, const Color& radiance, const AovSample& aov) {
+    const size_t i = index(x, y);
+    radiance_[i] += radiance;
+    ++samples_[i];
+    if (!aov.hit) return;  // a miss adds 0 to the normal and albedo sums and no depth
+    if (!normal_.empty()) normal_[i] += aov.normal;
+    if (!albedo_.empty()) albedo_[i] += aov.albedo;
+    if (!depth_.empty()) {
+        depth_[i] += aov.depth;
+        ++hits_[i];
+    }
+}
+
+std::vector<float> Film::resolveBeauty() const {
+    std::vector<float> out(radiance_.size() * 3);
+    for (size_t i = 0; i < radiance_.size(); ++i) {
+        // A pixel without samples resolves to black rather than 0/0.
+        const Color mean =
+            samples_[i] > 0 ? radiance_[i] / static_cast<float>(samples_[i]) : Color(0.0f);
+        out[3 * i + 0] = mean.r;
+        out[3 * i + 1] = mean.g;
+        out[3 * i + 2] = mean.b;
+    }
+    return out;
+}
+
+std::vector<float> Film::resolveAov(AovKind kind) const {
+    if (std::find(aovs_.begin(), aovs_.end(), kind) == aovs_.end())
+        fail("film: AOV '", aovName(kind), "' was not requested for this film");
+
+    const size_t channels = static_cast<size_t>(aovChannels(kind));
+    std::vector<float> out(samples_.size() * channels);
+    for (size_t i = 0; i < samples_.size(); ++i) {
+        float* px = out.data() + channels * i;
+        if (kind == AovKind::Depth) {
+            px[0] = hits_[i] > 0 ? depth_[i] / static_cast<float>(hits_[i]) : kInfinity;
+            continue;
+        }
+        const Vec3& sum = kind == AovKind::Normal ? normal_[i] : albedo_[i];
+        const Vec3 mean = samples_[i] > 0 ? sum / static_cast<float>(samples_[i]) : Vec3(0.0f);
+        px[0] = mean.x;
+        px[1] = mean.y;
+        px[2] = mean.z;
+    }
+    return out;
+}
+
+}  // namespace strahl

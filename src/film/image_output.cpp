@@ -1,0 +1,255 @@
+#include "strahl/film/image_output.h"
+
+#include <OpenImageIO/imageio.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <glm/gtc/type_ptr.hpp>
+#include <limits>
+#include <memory>
+#include <string>
+#include <system_error>
+#include <utility>
+#include <vector>
+
+#include "strahl/core/error.h"
+
+namespace strahl {
+namespace {
+
+namespace fs = std::filesystem;
+
+enum class Encoding {
+    SceneLinearExr,  // OpenEXR, half or float, with AOVs and metadata
+    Display8,        // display-referred 8-bit
+    Display16,       // display-referred 16-bit
+};
+
+struct Format {
+    const char* extension;   // lower case, with the dot
+    const char* oiioFormat;  // OpenImageIO plugin name
+    Encoding encoding;
+};
+
+constexpr Format kFormats[] = {
+    {".exr", "openexr", Encoding::SceneLinearExr}, {".png", "png", Encoding::Display8},
+    {".jpg", "jpeg", Encoding::Display8},          {".jpeg", "jpeg", Encoding::Display8},
+    {".tif", "tiff", Encoding::Display16},         {".tiff", "tiff", Encoding::Display16},
+};
+
+std::string supportedExtensions() {
+    std::string list;
+    for (const Format& format : kFormats) list += concat(list.empty() ? "" : " ", format.extension);
+    return list;
+}
+
+const Format& formatOf(const fs::path& file) {
+    std::string ext = file.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    for (const Format& format : kFormats)
+        if (ext == format.extension) return format;
+    fail(file.string(), ": unsupported image format ",
+         ext.empty() ? std::string("(no extension)") : "'" + ext + "'",
+         " (supported: ", supportedExtensions(), ")");
+}
+
+// A name in the destination folder that no other writer uses: hidden, unique
+// per process and call, and ending in the original extension, which is what
+// OpenImageIO and tools that look at the folder go by.
+fs::path temporaryPath(const fs::path& file) {
+    static std::atomic<unsigned> counter{0};
+    const std::string name = concat(".", file.stem().string(), ".strahl-tmp-", ::getpid(), "-",
+                                    counter.fetch_add(1), file.extension().string());
+    return file.parent_path() / name;
+}
+
+// Removes the temporary file unless the write got as far as renaming it.
+class TemporaryFile {
+  public:
+    explicit TemporaryFile(fs::path path) : path_(std::move(path)) {}
+    TemporaryFile(const TemporaryFile&) = delete;
+    TemporaryFile& operator=(const TemporaryFile&) = delete;
+    ~TemporaryFile() {
+        if (!renamed_) {
+            std::error_code ignored;
+            fs::remove(path_, ignored);
+        }
+    }
+    const fs::path& path() const { return path_; }
+    void renamed() { renamed_ = true; }
+
+  private:
+    fs::path path_;
+    bool renamed_ = false;
+};
+
+void addMetadata(OIIO::ImageSpec& spec, const ImageMetadata& metadata) {
+    spec.attribute("Software", "strahl " STRAHL_VERSION);
+    spec.attribute("strahl:version", STRAHL_VERSION);
+    spec.attribute("strahl:renderTime", static_cast<float>(metadata.renderSeconds));
+    spec.attribute("strahl:spp", metadata.spp);
+    spec.attribute("strahl:integrator", metadata.integrator);
+    spec.attribute("strahl:camera", metadata.camera);
+    // GLM stores column-major matrices for column vectors (p' = M p); read in
+    // row-major order, the same 16 floats are the matrix for row vectors
+    // (p' = p M) that OpenEXR's worldToCamera (Imath::M44f) expects.
+    spec.attribute("worldToCamera", OIIO::TypeMatrix44, glm::value_ptr(metadata.worldToCamera));
+    for (const auto& [key, value] : metadata.extra) spec.attribute("strahl:" + key, value);
+}
+
+// EXR channel name suffixes, one per channel, after the usual conventions:
+// XYZ for vectors, Z for depth, RGB for colours.
+const char* channelSuffixes(AovKind kind) {
+    switch (kind) {
+        case AovKind::Normal:
+            return "XYZ";
+        case AovKind::Depth:
+            return "Z";
+        case AovKind::Albedo:
+            return "RGB";
+    }
+    fail("invalid AovKind value ", static_cast<int>(kind));
+}
+
+// EXR: the crop is the data window inside the full display window, so crops
+// of one image composite into the whole.
+OIIO::ImageSpec exrSpec(const Film& film, const OutputSettings& settings,
+                        const ImageMetadata& metadata, std::vector<float>& pixels) {
+    std::vector<std::string> names{"R", "G", "B"};
+    std::vector<std::vector<float>> planes{film.resolveBeauty()};
+    for (AovKind kind : film.aovs()) {
+        for (const char* suffix = channelSuffixes(kind); *suffix != '\0'; ++suffix)
+            names.push_back(concat(aovName(kind), ".", *suffix));
+        planes.push_back(film.resolveAov(kind));
+    }
+
+    const PixelRect& crop = film.crop();
+    const size_t count = static_cast<size_t>(crop.width()) * static_cast<size_t>(crop.height());
+    const size_t channels = names.size();
+    pixels.assign(count * channels, 0.0f);
+    size_t first = 0;  // the first interleaved channel of the current plane
+    for (const std::vector<float>& plane : planes) {
+        const size_t planeChannels = plane.size() / count;
+        for (size_t i = 0; i < count; ++i)
+            for (size_t c = 0; c < planeChannels; ++c)
+                pixels[i * channels + first + c] = plane[i * planeChannels + c];
+        first += planeChannels;
+    }
+
+    OIIO::ImageSpec spec(crop.width(), crop.height(), static_cast<int>(channels),
+                         settings.exrFloat ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF);
+    spec.channelnames = names;
+    // The constructor named channel 3 "A" and made it alpha; none of ours is.
+    spec.alpha_channel = -1;
+    spec.z_channel = -1;
+    spec.x = crop.x0;
+    spec.y = crop.y0;
+    spec.full_x = 0;
+    spec.full_y = 0;
+    spec.full_width = film.fullWidth();
+    spec.full_height = film.fullHeight();
+    spec.attribute("compression", "zip");
+    addMetadata(spec, metadata);
+    return spec;
+}
+
+// Display-referred formats: the crop alone, through the display transform,
+// clamped to [0, 1] (NaN to 0) and rounded to the nearest code value.
+template <typename T>
+std::vector<T> quantise(const std::vector<float>& values) {
+    constexpr float kMax = static_cast<float>(std::numeric_limits<T>::max());
+    std::vector<T> out(values.size());
+    for (size_t i = 0; i < values.size(); ++i) {
+        const float v = std::isnan(values[i]) ? 0.0f : std::clamp(values[i], 0.0f, 1.0f);
+        out[i] = static_cast<T>(std::lround(v * kMax));
+    }
+    return out;
+}
+
+// `pixels` are interleaved values of type `pixelType`; OpenImageIO converts
+// them to spec.format.
+void writeFile(const fs::path& file, const Format& format, OIIO::ImageSpec& spec,
+               OIIO::TypeDesc pixelType, const void* pixels) {
+    TemporaryFile temp(temporaryPath(file));
+    std::string error;
+    {
+        std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(format.oiioFormat);
+        if (!out) {
+            error = OIIO::geterror();
+        } else if (!out->open(temp.path().string(), spec) || !out->write_image(pixelType, pixels) ||
+                   !out->close()) {
+            error = out->geterror();
+        }
+    }  // the output is destroyed, and the file closed, before any rename or removal
+    if (error.empty()) {
+        std::error_code ec;
+        fs::rename(temp.path(), file, ec);
+        if (ec)
+            error = ec.message();
+        else
+            temp.renamed();
+    }
+    if (!error.empty()) fail(file.string(), ": cannot write: ", error);
+}
+
+}  // namespace
+
+void checkOutputPath(const fs::path& file) {
+    formatOf(file);
+    std::error_code ec;
+    if (fs::is_directory(file, ec)) fail(file.string(), ": is a folder, not an image file name");
+    const fs::path folder = file.parent_path().empty() ? fs::path(".") : file.parent_path();
+    if (!fs::exists(folder, ec))
+        fail(file.string(), ": cannot write: folder '", folder.string(), "' does not exist");
+    if (!fs::is_directory(folder, ec))
+        fail(file.string(), ": cannot write: '", folder.string(), "' is not a folder");
+
+    // Permissions alone do not tell (ACLs, read-only mounts, root): try it.
+    const fs::path probe = temporaryPath(file);
+    std::FILE* handle = std::fopen(probe.c_str(), "wx");  // "x": fail rather than reuse a file
+    if (handle == nullptr) {
+        const int error = errno;
+        fail(file.string(), ": cannot write in folder '", folder.string(),
+             "': ", std::strerror(error));
+    }
+    std::fclose(handle);
+    fs::remove(probe, ec);
+}
+
+void writeImage(const Film& film, const fs::path& file, const OutputSettings& settings,
+                const ImageMetadata& metadata) {
+    const Format& format = formatOf(file);
+    if (format.encoding == Encoding::SceneLinearExr) {
+        std::vector<float> pixels;
+        OIIO::ImageSpec spec = exrSpec(film, settings, metadata, pixels);
+        writeFile(file, format, spec, OIIO::TypeDesc::FLOAT, pixels.data());
+        return;
+    }
+
+    const int width = film.crop().width();
+    const int height = film.crop().height();
+    std::vector<float> rgb = film.resolveBeauty();
+    DisplayTransform::get(settings.color)->apply(rgb, width, height);
+
+    const OIIO::TypeDesc type =
+        format.encoding == Encoding::Display16 ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8;
+    OIIO::ImageSpec spec(width, height, 3, type);
+    addMetadata(spec, metadata);  // each format keeps what it can represent
+    if (type == OIIO::TypeDesc::UINT16) {
+        const std::vector<uint16_t> pixels = quantise<uint16_t>(rgb);
+        writeFile(file, format, spec, type, pixels.data());
+    } else {
+        const std::vector<uint8_t> pixels = quantise<uint8_t>(rgb);
+        writeFile(file, format, spec, type, pixels.data());
+    }
+}
+
+}  // namespace strahl

@@ -1,0 +1,88 @@
+#pragma once
+// Internal to the scene module: JSON text to typed values, with every error
+// naming the file and the place. Syntax errors carry "file:LINE:COLUMN", content
+// errors the JSON pointer of the offending value ("file: /film/width: ...").
+// Objects are read with an explicit list of allowed keys, so a misspelt key is an
+// error rather than a silently ignored setting.
+
+#include <array>
+#include <cstdint>
+#include <initializer_list>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+
+#include "strahl/core/error.h"
+#include "strahl/core/math.h"
+
+namespace strahl::scene_detail {
+
+// Parses JSON that may contain // and /* */ comments. Throws strahl::Error
+// "<label>:LINE:COLUMN: syntax error: <reason>" (1-based) on malformed text.
+nlohmann::json parseJsonText(const std::string& text, const std::string& label);
+
+// A value inside a parsed document together with its JSON pointer. Cheap to
+// copy; refers to the document and the label, which must outlive it.
+class JsonValue {
+public:
+    JsonValue(const nlohmann::json& value, std::string pointer, const std::string& label)
+        : value_(&value), pointer_(std::move(pointer)), label_(&label) {}
+
+    const std::string& pointer() const { return pointer_; }
+    const nlohmann::json& raw() const { return *value_; }
+
+    // Throws strahl::Error "<label>: <pointer>: <pieces...>".
+    template <typename... Args>
+    [[noreturn]] void fail(const Args&... args) const {
+        strahl::fail(*label_, ": ", where(), ": ", args...);
+    }
+
+    // --- objects -------------------------------------------------------------
+    // Requires an object whose keys are all in `allowed`; otherwise throws
+    // "unknown key 'x' (allowed: a, b, c)".
+    void requireKeys(std::initializer_list<std::string_view> allowed) const;
+    bool has(std::string_view key) const;
+    JsonValue get(std::string_view key) const;  // throws "missing key 'x'"
+    std::optional<JsonValue> find(std::string_view key) const;
+
+    // --- arrays --------------------------------------------------------------
+    size_t size() const;  // requires an array
+    JsonValue at(size_t index) const;
+
+    // --- scalars -------------------------------------------------------------
+    bool boolean() const;
+    std::string string() const;
+    // One of `choices`; throws "must be one of a, b, got 'c'".
+    std::string oneOf(std::initializer_list<std::string_view> choices) const;
+    // A number whose value is finite as a float.
+    float number() const;
+    // An integer (an integral number such as 2 or 2.0) in [lo, hi].
+    int64_t integer(int64_t lo, int64_t hi) const;
+    // A non-negative integer no larger than `hi`.
+    uint64_t unsignedInteger(uint64_t hi) const;
+
+    // --- vectors and colours -------------------------------------------------
+    Vec2 vec2() const;  // [x, y]
+    Vec3 vec3() const;  // [x, y, z]
+    // A grey level (one number) or [r, g, b]; every component finite and >= 0.
+    Color color() const;
+
+    // "string", "array", ... or the number itself: what a message says was found.
+    std::string describe() const;
+
+private:
+    std::string where() const { return pointer_.empty() ? "top level" : pointer_; }
+    std::string childPointer(std::string_view key) const;
+    void requireArray() const;
+    // The numbers of an array of exactly N elements.
+    template <size_t N>
+    std::array<float, N> numbers() const;
+
+    const nlohmann::json* value_;
+    std::string pointer_;
+    const std::string* label_;
+};
+
+}  // namespace strahl::scene_detail

@@ -1,0 +1,409 @@
+// Scene file (JSON with comments) to SceneDesc. The format is documented key by
+// key in docs/scene-format.md; this file checks every value it reads and names
+// the JSON pointer of anything it rejects. Nothing is loaded here except the
+// text itself: mesh files are only checked to exist.
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <glm/gtc/matrix_transform.hpp>
+#include <limits>
+#include <memory>
+#include <string_view>
+
+#include "json_reader.h"
+#include "strahl/core/error.h"
+#include "strahl/scene/scene_desc.h"
+
+namespace strahl {
+namespace {
+
+namespace fs = std::filesystem;
+using scene_detail::JsonValue;
+
+constexpr int64_t kMaxFilmSide = 32768;
+constexpr int64_t kMaxFilmPixels = int64_t(1) << 28;
+constexpr int64_t kMaxSpp = 65536;
+// Below this sine of the angle between up and the viewing axis, the camera frame
+// is undefined.
+constexpr float kMinUpSine = 1e-6f;
+// |det| / (product of the column lengths) lies in [0, 1] (Hadamard's inequality):
+// 1 for orthogonal axes (any rotation and scale), 0 for a matrix that flattens
+// space. Below this the transform is singular.
+constexpr double kMinDeterminantRatio = 1e-6;
+
+// The direction of a non-zero finite vector, exact also for components whose
+// squares over- or underflow (glm::normalize of 1e20 or 1e-30 is not).
+Vec3 unitVector(const Vec3& v) {
+    return glm::normalize(v / maxComponent(glm::abs(v)));
+}
+
+bool hasExtension(const fs::path& path, std::initializer_list<std::string_view> extensions) {
+    std::string ext = path.extension().string();
+    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    for (std::string_view allowed : extensions) {
+        if (ext == allowed) return true;
+    }
+    return false;
+}
+
+// Relative paths are relative to the scene file's folder; absolute ones are kept.
+fs::path resolvePath(const fs::path& folder, const JsonValue& value) {
+    const std::string text = value.string();
+    if (text.empty()) value.fail("expected a path, got an empty string");
+    const fs::path path(text);
+    return (path.is_absolute() ? path : folder / path).lexically_normal();
+}
+
+// --- camera --------------------------------------------------------------------
+
+ImageWindow parseWindow(const JsonValue& value) {
+    if (value.size() != 4)
+        value.fail("expected an array of 4 numbers [l, r, b, t], got an array of ", value.size());
+    ImageWindow w{value.at(0).number(), value.at(1).number(), value.at(2).number(),
+                  value.at(3).number()};
+    if (!(w.l < 0.0f && 0.0f < w.r && w.b < 0.0f && 0.0f < w.t))
+        value.fail("must satisfy l < 0 < r and b < 0 < t, got [", w.l, ", ", w.r, ", ", w.b, ", ",
+                   w.t, "]");
+    return w;
+}
+
+CameraDesc parseCamera(const JsonValue& v) {
+    v.requireKeys({"type", "eye", "look_at", "back", "up", "focal_distance", "fov", "window"});
+    CameraDesc c;
+    if (auto type = v.find("type"))
+        c.projection = type->oneOf({"perspective", "orthographic"}) == "perspective"
+                           ? Projection::Perspective
+                           : Projection::Orthographic;
+    if (auto eye = v.find("eye")) c.eye = eye->vec3();
+
+    // The back axis w, from "back" or from the eye and "look_at".
+    if (v.has("look_at") && v.has("back")) v.fail("'look_at' and 'back' are exclusive: give one");
+    Vec3 w;
+    if (auto back = v.find("back")) {
+        c.back = back->vec3();
+        if (*c.back == Vec3(0.0f)) back->fail("must be non-zero");
+        w = *c.back;
+    } else {
+        auto lookAt = v.find("look_at");
+        c.lookAt = lookAt ? lookAt->vec3() : Vec3(0.0f);
+        w = c.eye - *c.lookAt;
+        const JsonValue& where = lookAt ? *lookAt : v;
+        if (w == Vec3(0.0f)) where.fail("the camera looks at its own eye position");
+        if (!isFinite(w)) where.fail("eye - look_at exceeds the float range");
+    }
+    if (auto up = v.find("up")) {
+        c.up = up->vec3();
+        if (c.up == Vec3(0.0f)) up->fail("must be non-zero");
+        if (glm::length(glm::cross(unitVector(w), unitVector(c.up))) < kMinUpSine)
+            up->fail("is parallel to the viewing direction");
+    } else if (glm::length(glm::cross(unitVector(w), c.up)) < kMinUpSine) {
+        v.fail("the viewing direction is vertical: give an 'up' not parallel to it");
+    }
+
+    if (auto d = v.find("focal_distance")) {
+        c.focalDistance = d->number();
+        if (!(c.focalDistance > 0.0f)) d->fail("must be greater than 0, got ", d->raw().dump());
+    }
+    if (auto fov = v.find("fov")) {
+        if (c.projection != Projection::Perspective)
+            fov->fail("only for a perspective camera (this one is orthographic)");
+        if (v.has("window")) v.fail("'fov' and 'window' are exclusive: give one");
+        const float degrees = fov->number();
+        if (!(degrees > 0.0f && degrees < 180.0f))
+            fov->fail("must be greater than 0 and less than 180, got ", fov->raw().dump());
+        c.fovYDegrees = degrees;
+    }
+    if (auto window = v.find("window")) c.window = parseWindow(*window);
+
+    if (!c.fovYDegrees && !c.window) {
+        if (c.projection == Projection::Perspective)
+            c.fovYDegrees = 45.0f;
+        else
+            c.window = ImageWindow{};
+    }
+    return c;
+}
+
+// --- film and render -----------------------------------------------------------
+
+FilmDesc parseFilm(const JsonValue& v, const fs::path& folder) {
+    v.requireKeys({"width", "height", "outputs", "aovs", "exr_float"});
+    FilmDesc f;
+    if (auto width = v.find("width")) f.width = static_cast<int>(width->integer(1, kMaxFilmSide));
+    if (auto height = v.find("height"))
+        f.height = static_cast<int>(height->integer(1, kMaxFilmSide));
+    if (int64_t(f.width) * f.height > kMaxFilmPixels)
+        v.fail("width x height = ", int64_t(f.width) * f.height, " pixels, more than the limit of ",
+               kMaxFilmPixels, " (2^28)");
+
+    if (auto outputs = v.find("outputs")) {
+        for (size_t i = 0; i < outputs->size(); ++i) {
+            const JsonValue output = outputs->at(i);
+            fs::path path = resolvePath(folder, output);
+            if (!hasExtension(path, {".exr", ".png", ".jpg", ".jpeg", ".tif", ".tiff"}))
+                output.fail("'", path.filename().string(), "' is not a supported image format ",
+                            "(extensions: .exr, .png, .jpg, .jpeg, .tif, .tiff)");
+            f.outputs.push_back(std::move(path));
+        }
+    }
+    if (auto aovs = v.find("aovs")) {
+        for (size_t i = 0; i < aovs->size(); ++i) {
+            const JsonValue aov = aovs->at(i);
+            const std::string name = aov.oneOf({"normal", "depth", "albedo"});
+            const AovKind kind = name == "normal"  ? AovKind::Normal
+                                 : name == "depth" ? AovKind::Depth
+                                                   : AovKind::Albedo;
+            if (std::find(f.aovs.begin(), f.aovs.end(), kind) != f.aovs.end())
+                aov.fail("'", name, "' is listed twice");
+            f.aovs.push_back(kind);
+        }
+    }
+    if (auto exrFloat = v.find("exr_float")) f.exrFloat = exrFloat->boolean();
+    return f;
+}
+
+RenderDesc parseRender(const JsonValue& v) {
+    v.requireKeys({"integrator", "spp", "seed"});
+    RenderDesc r;
+    if (auto integrator = v.find("integrator"))
+        r.integrator = integrator->oneOf({"eyelight", "normal", "depth", "primid", "direct"});
+    if (auto spp = v.find("spp")) r.spp = static_cast<int>(spp->integer(1, kMaxSpp));
+    if (auto seed = v.find("seed"))
+        r.seed = seed->unsignedInteger(std::numeric_limits<uint64_t>::max());
+    return r;
+}
+
+// --- materials -----------------------------------------------------------------
+
+std::vector<MaterialDesc> parseMaterials(const JsonValue& v) {
+    std::vector<MaterialDesc> materials;
+    for (size_t i = 0; i < v.size(); ++i) {
+        const JsonValue m = v.at(i);
+        m.requireKeys({"name", "type", "color", "emission"});
+        MaterialDesc desc;
+        desc.where = m.pointer();
+        const JsonValue name = m.get("name");
+        desc.name = name.string();
+        if (desc.name.empty()) name.fail("must not be empty");
+        if (desc.name == "default")
+            name.fail("'default' is reserved for the built-in grey material");
+        for (const MaterialDesc& earlier : materials) {
+            if (earlier.name == desc.name)
+                name.fail("material '", desc.name, "' is already defined at ", earlier.where);
+        }
+        if (auto type = m.find("type")) type->oneOf({"diffuse"});
+        if (auto color = m.find("color")) desc.diffuse = color->color();
+        if (auto emission = m.find("emission")) desc.emission = emission->color();
+        materials.push_back(std::move(desc));
+    }
+    return materials;
+}
+
+// --- shapes --------------------------------------------------------------------
+
+Mat4 parseTransformOp(const JsonValue& op) {
+    if (!op.raw().is_object() || op.raw().size() != 1)
+        op.fail("expected an object with exactly one of translate, scale, rotate, matrix, got ",
+                op.raw().is_object() ? concat("an object with ", op.raw().size(), " keys")
+                                     : op.describe());
+    op.requireKeys({"translate", "scale", "rotate", "matrix"});
+    const std::string key = op.raw().begin().key();
+    const JsonValue arg = op.get(key);
+    const Mat4 identity(1.0f);
+    if (key == "translate") return glm::translate(identity, arg.vec3());
+    if (key == "scale") {
+        if (!arg.raw().is_number() && !arg.raw().is_array())
+            arg.fail("expected a number or an array of 3 numbers, got ", arg.describe());
+        const Vec3 s = arg.raw().is_number() ? Vec3(arg.number()) : arg.vec3();
+        if (s.x == 0.0f || s.y == 0.0f || s.z == 0.0f)
+            arg.fail("must be non-zero, got ", arg.raw().dump());
+        return glm::scale(identity, s);
+    }
+    if (key == "rotate") {
+        arg.requireKeys({"axis", "angle"});
+        const JsonValue axisValue = arg.get("axis");
+        const Vec3 axis = axisValue.vec3();
+        if (axis == Vec3(0.0f)) axisValue.fail("must be non-zero");
+        const float degrees = arg.get("angle").number();
+        return glm::rotate(identity, glm::radians(degrees), unitVector(axis));
+    }
+    // "matrix": 16 numbers, row-major; glm indexes m[column][row].
+    if (arg.size() != 16) arg.fail("expected an array of 16 numbers, got an array of ", arg.size());
+    Mat4 m;
+    for (int row = 0; row < 4; ++row) {
+        for (int col = 0; col < 4; ++col) m[col][row] = arg.at(size_t(4 * row + col)).number();
+    }
+    if (m[0][3] != 0.0f || m[1][3] != 0.0f || m[2][3] != 0.0f || m[3][3] != 1.0f)
+        arg.fail("must be affine: the last row must be 0 0 0 1, got ", m[0][3], " ", m[1][3], " ",
+                 m[2][3], " ", m[3][3]);
+    return m;
+}
+
+// The operations apply in the order listed, so the first is the rightmost factor.
+Mat4 parseTransform(const JsonValue& v) {
+    Mat4 m(1.0f);
+    for (size_t i = 0; i < v.size(); ++i) m = parseTransformOp(v.at(i)) * m;
+    for (int col = 0; col < 4; ++col) {
+        if (!isFinite(Vec3(m[col]))) v.fail("the composed transform exceeds the float range");
+    }
+    const glm::dmat3 linear{Mat3(m)};
+    const double det = glm::determinant(linear);
+    const double scale = glm::length(linear[0]) * glm::length(linear[1]) * glm::length(linear[2]);
+    if (!(std::abs(det) > kMinDeterminantRatio * scale))
+        v.fail("the composed transform is singular (determinant ", det, ")");
+    return m;
+}
+
+void checkMeshFile(const JsonValue& value, const fs::path& path) {
+    std::error_code ec;
+    const std::string given = value.string();
+    if (!fs::exists(path, ec))
+        value.fail("no such file '", given, "' (looked at ", path.string(), ")");
+    if (!fs::is_regular_file(path, ec))
+        value.fail("'", given, "' is not a regular file (looked at ", path.string(), ")");
+    if (!hasExtension(path, {".obj", ".ply"}))
+        value.fail("'", given, "' is not a supported mesh format (extensions: .obj, .ply)");
+}
+
+TriangleMesh parseInlineMesh(const JsonValue& v, const std::string& label) {
+    TriangleMesh mesh;
+    const JsonValue positions = v.get("positions");
+    mesh.positions.reserve(positions.size());
+    for (size_t i = 0; i < positions.size(); ++i) mesh.positions.push_back(positions.at(i).vec3());
+
+    const JsonValue indices = v.get("indices");
+    if (indices.size() == 0) indices.fail("must contain at least one triangle");
+    if (indices.size() % 3 != 0)
+        indices.fail("has ", indices.size(), " entries, not a multiple of 3 (triangles only)");
+    mesh.indices.reserve(indices.size());
+    for (size_t i = 0; i < indices.size(); ++i) {
+        mesh.indices.push_back(static_cast<uint32_t>(
+            indices.at(i).unsignedInteger(std::numeric_limits<uint32_t>::max())));
+    }
+    if (auto normals = v.find("normals")) {
+        for (size_t i = 0; i < normals->size(); ++i) mesh.normals.push_back(normals->at(i).vec3());
+    }
+    if (auto uvs = v.find("uvs")) {
+        for (size_t i = 0; i < uvs->size(); ++i) mesh.uvs.push_back(uvs->at(i).vec2());
+    }
+    mesh.validate(concat(label, ": ", v.pointer()));
+    return mesh;
+}
+
+ShapeDesc parseShape(const JsonValue& v, const fs::path& folder, const std::string& label,
+                     const std::vector<MaterialDesc>& materials) {
+    v.requireKeys({"type", "name", "file", "positions", "indices", "normals", "uvs", "material",
+                   "transform"});
+    v.get("type").oneOf({"mesh"});
+    ShapeDesc s;
+    s.where = v.pointer();
+
+    const auto file = v.find("file");
+    if (file && v.has("positions")) v.fail("'file' and 'positions' are exclusive: give one");
+    if (file) {
+        for (std::string_view key : {"indices", "normals", "uvs"}) {
+            if (auto extra = v.find(key))
+                extra->fail("only for inline meshes (with 'positions'), not with 'file'");
+        }
+        s.file = resolvePath(folder, *file);
+        checkMeshFile(*file, s.file);
+        s.name = s.file.stem().string();
+    } else if (v.has("positions")) {
+        s.inlineMesh = parseInlineMesh(v, label);
+        s.name = s.where;
+    } else {
+        v.fail("needs 'file' (a mesh file) or 'positions' (an inline mesh)");
+    }
+    if (auto name = v.find("name")) s.name = name->string();
+
+    if (auto material = v.find("material")) {
+        s.material = material->string();
+        const bool known = s.material.empty() || s.material == "default" ||
+                           std::any_of(materials.begin(), materials.end(),
+                                       [&](const MaterialDesc& m) { return m.name == s.material; });
+        if (!known) {
+            std::string defined;
+            for (const MaterialDesc& m : materials) defined += m.name + ", ";
+            material->fail("unknown material '", s.material, "' (defined: ", defined, "default)");
+        }
+    }
+    if (s.material.empty() && s.file.empty()) s.material = "default";
+
+    if (auto transform = v.find("transform")) s.transform = parseTransform(*transform);
+    return s;
+}
+
+// --- lights --------------------------------------------------------------------
+
+LightDesc parseLight(const JsonValue& v) {
+    LightDesc l;
+    l.where = v.pointer();
+    if (v.get("type").oneOf({"point", "directional"}) == "point") {
+        v.requireKeys({"type", "position", "intensity"});
+        l.type = LightType::Point;
+        l.position = v.get("position").vec3();
+        if (auto intensity = v.find("intensity")) l.intensity = intensity->color();
+    } else {
+        v.requireKeys({"type", "direction", "irradiance"});
+        l.type = LightType::Directional;
+        const JsonValue direction = v.get("direction");
+        const Vec3 d = direction.vec3();
+        if (d == Vec3(0.0f)) direction.fail("must be non-zero");
+        l.direction = unitVector(d);
+        if (auto irradiance = v.find("irradiance")) l.irradiance = irradiance->color();
+    }
+    return l;
+}
+
+}  // namespace
+
+SceneDesc parseSceneText(const std::string& text, const fs::path& file) {
+    const std::string label = file.string();
+    const nlohmann::json document = scene_detail::parseJsonText(text, label);
+    const JsonValue root(document, "", label);
+    root.requireKeys({"camera", "film", "render", "background", "materials", "shapes", "lights"});
+
+    SceneDesc scene;
+    scene.file = fs::absolute(file).lexically_normal();
+    const fs::path folder = scene.file.parent_path();
+
+    // The camera's defaults depend on each other, so it is parsed even when absent.
+    const nlohmann::json noCamera = nlohmann::json::object();
+    scene.camera = parseCamera(root.find("camera").value_or(JsonValue(noCamera, "/camera", label)));
+    if (auto film = root.find("film")) scene.film = parseFilm(*film, folder);
+    if (auto render = root.find("render")) scene.render = parseRender(*render);
+    if (auto background = root.find("background")) scene.background = background->color();
+    if (auto materials = root.find("materials")) scene.materials = parseMaterials(*materials);
+
+    const auto shapes = root.find("shapes");
+    if (!shapes || shapes->size() == 0) fail(label, ": scene has no shapes");
+    for (size_t i = 0; i < shapes->size(); ++i)
+        scene.shapes.push_back(parseShape(shapes->at(i), folder, label, scene.materials));
+
+    if (auto lights = root.find("lights")) {
+        for (size_t i = 0; i < lights->size(); ++i)
+            scene.lights.push_back(parseLight(lights->at(i)));
+    }
+    return scene;
+}
+
+SceneDesc parseSceneFile(const fs::path& file) {
+    const std::string label = file.string();
+    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> stream(std::fopen(file.c_str(), "rb"),
+                                                                 &std::fclose);
+    if (!stream) fail(label, ": cannot open: ", std::strerror(errno));
+    std::string text;
+    std::array<char, 1 << 16> buffer;
+    size_t n = 0;
+    while ((n = std::fread(buffer.data(), 1, buffer.size(), stream.get())) > 0)
+        text.append(buffer.data(), n);
+    if (std::ferror(stream.get())) fail(label, ": cannot read: ", std::strerror(errno));
+    return parseSceneText(text, file);
+}
+
+}  // namespace strahl
