@@ -78,6 +78,7 @@ int runRender(const Options& o) {
         fail(o.scene, ": no output image: give -o FILE or film.outputs in the scene");
     // Fail on a bad output path or integrator name now, not after a long render.
     for (const auto& out : desc.film.outputs) checkOutputPath(out);
+    requireIntegratorName(desc.render.integrator);
     const PixelRect crop = cropWindow(o, desc);
 
     ProgressReporter progress(ProgressReporter::defaultStyle(o.quiet));

@@ -13,15 +13,21 @@ constexpr std::array<std::string_view, 5> kNames = {"eyelight", "normal", "depth
 
 std::span<const std::string_view> integratorNames() { return kNames; }
 
+void requireIntegratorName(std::string_view name) {
+    for (std::string_view n : kNames)
+        if (n == name) return;
+    std::string valid;
+    for (std::string_view n : kNames) valid += (valid.empty() ? "" : ", ") + std::string(n);
+    fail("unknown integrator '", name, "' (valid: ", valid, ")");
+}
+
 std::unique_ptr<Integrator> makeIntegrator(std::string_view name, const World& world) {
+    requireIntegratorName(name);
     if (name == "eyelight") return std::make_unique<EyelightIntegrator>();
     if (name == "normal") return std::make_unique<NormalIntegrator>();
     if (name == "depth") return std::make_unique<DepthIntegrator>(world);
     if (name == "primid") return std::make_unique<PrimIdIntegrator>();
-    if (name == "direct") return std::make_unique<DirectIntegrator>();
-    std::string valid;
-    for (std::string_view n : kNames) valid += (valid.empty() ? "" : ", ") + std::string(n);
-    fail("unknown integrator '", name, "' (valid: ", valid, ")");
+    return std::make_unique<DirectIntegrator>();
 }
 
 }  // namespace strahl

@@ -162,7 +162,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"extension", kQuad, "", "", "-o out/x.bmpx", "x.bmpx", 1},
         BadInput{"integrator", kQuad, "", "", "--integrator phong", "phong", 1},
         BadInput{"crop", kQuad, "", "", "--crop 0,0,100,100", "--crop", 1}),
-    [](const auto& info) { return std::string(info.param.name); });
+    [](const auto& testInfo) { return std::string(testInfo.param.name); });
 
 TEST(Cli, InfoPrintsCountsBoundsAndMemory) {
     const RunResult r = run("info " + (test::sourceDir() / "scenes/default.json").string());

@@ -44,6 +44,7 @@ public:
 std::span<const std::string_view> integratorNames();
 
 // Throws strahl::Error naming the integrator and the valid names if unknown.
+void requireIntegratorName(std::string_view name);
 std::unique_ptr<Integrator> makeIntegrator(std::string_view name, const World& world);
 
 }  // namespace strahl
