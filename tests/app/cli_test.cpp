@@ -6,6 +6,7 @@
 #include <OpenImageIO/imagebufalgo.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <fstream>
@@ -34,9 +35,12 @@ void writeFile(const fs::path& p, const std::string& text) {
     std::ofstream(p, std::ios::binary) << text;
 }
 
+// ctest runs tests in parallel processes: capture files are per process.
 RunResult run(const std::string& args) {
     const fs::path dir = fs::temp_directory_path();
-    const fs::path out = dir / "strahl-cli-stdout.txt", err = dir / "strahl-cli-stderr.txt";
+    const std::string tag = std::to_string(getpid());
+    const fs::path out = dir / ("strahl-cli-stdout-" + tag + ".txt");
+    const fs::path err = dir / ("strahl-cli-stderr-" + tag + ".txt");
     const std::string command = std::string(STRAHL_BINARY) + " " + args + " >" + out.string() +
                                 " 2>" + err.string();
     const int raw = std::system(command.c_str());
@@ -44,6 +48,8 @@ RunResult run(const std::string& args) {
     r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
     r.out = readFile(out);
     r.err = readFile(err);
+    fs::remove(out);
+    fs::remove(err);
     return r;
 }
 
@@ -117,6 +123,9 @@ struct BadInput {
     std::string expectedInMessage;
     int status;
 };
+
+// Test names carry the case name; gtest need not dump the struct's bytes.
+void PrintTo(const BadInput& input, std::ostream* os) { *os << input.name; }
 
 class CliBadInput : public ::testing::TestWithParam<BadInput> {};
 
