@@ -145,6 +145,7 @@ public:
             if (!inserted) it->second = std::min(it->second, t);
         }
     }
+    bool has(const std::string& name) const { return best_.count(name) != 0; }
     double best(const std::string& name) const { return best_.at(name); }
 
 private:
@@ -183,6 +184,12 @@ int main(int argc, char** argv) {
     }
     RatioReporter reporter;
     benchmark::RunSpecifiedBenchmarks(&reporter);
+    if (!reporter.has("BM_Bare") || !reporter.has("BM_EyelightPackets") ||
+        !reporter.has("BM_EyelightSingle")) {
+        std::printf("\nratios need all three cases (no --benchmark_filter)\n");
+        benchmark::Shutdown();
+        return 0;
+    }
 
     const double bare = reporter.best("BM_Bare");
     const double eyelight = reporter.best("BM_EyelightPackets");

@@ -31,7 +31,14 @@ CameraFrame CameraFrame::lookAt(const Vec3& eye, const Vec3& target, const Vec3&
 
 Camera::Camera(const CameraFrame& frame, Projection projection, ImageWindow window,
                float focalDistance, int nx, int ny)
-    : frame_(frame), projection_(projection), window_(window), d_(focalDistance), nx_(nx), ny_(ny) {
+    : frame_(frame),
+      projection_(projection),
+      window_(window),
+      d_(focalDistance),
+      nx_(nx),
+      ny_(ny),
+      du_((window.r - window.l) / static_cast<float>(nx)),
+      dv_((window.b - window.t) / static_cast<float>(ny)) {
     if (nx <= 0 || ny <= 0) fail("camera: image size must be positive, got ", nx, "x", ny);
     if (!(window.l < 0.0f && 0.0f < window.r && window.b < 0.0f && 0.0f < window.t))
         fail("camera: the image window must satisfy l < 0 < r and b < 0 < t");
@@ -49,8 +56,8 @@ ImageWindow Camera::windowFromFov(float fovY, float focalDistance, int nx, int n
 }
 
 Ray Camera::generateRay(float x, float y) const {
-    const float u = window_.l + (window_.r - window_.l) * x / static_cast<float>(nx_);
-    const float v = window_.t + (window_.b - window_.t) * y / static_cast<float>(ny_);
+    const float u = window_.l + du_ * x;  // = l + (r - l) x / nx
+    const float v = window_.t + dv_ * y;  // = t + (b - t) y / ny
     Ray ray;
     if (projection_ == Projection::Orthographic) {
         ray.origin = frame_.e + u * frame_.u + v * frame_.v;

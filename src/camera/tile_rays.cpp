@@ -2,9 +2,9 @@
 
 namespace strahl {
 
-Ray TileRayGenerator::sampleRay(int px, int py, int s, Pcg32& rng) const {
-    rng = pixelSampleRng(seed_, static_cast<uint32_t>(px), static_cast<uint32_t>(py),
-                         static_cast<uint32_t>(s));
+Ray TileRayGenerator::sampleRay(int px, int py, int s, SampleRng& rng) const {
+    rng = SampleRng(seed_, static_cast<uint32_t>(px), static_cast<uint32_t>(py),
+                    static_cast<uint32_t>(s));
     float dx = 0.5f, dy = 0.5f;  // one sample: the pixel centre
     if (spp_ > 1) {
         dx = rng.nextFloat();

@@ -1,20 +1,19 @@
 // The debug integrators: eyelight, normal, depth, primid. None of them traces
-// secondary rays; they show what the first hit is.
+// secondary rays; they show what the first hit is, and only eyelight and
+// normal look at more than the accelerator's hit record.
 
 #include "debug_integrators.h"
 
-#include "strahl/core/rng.h"
-
 namespace strahl {
 
-Color EyelightIntegrator::shade(const World&, const Ray& ray, const Hit&,
-                                const SurfaceInteraction& si, Pcg32&, ShadingStats&) const {
-    return Color(std::abs(glm::dot(si.Ns, glm::normalize(ray.dir))));
+Color EyelightIntegrator::shade(const World&, const SurfaceHit& hit, SampleRng&,
+                                ShadingStats&) const {
+    return Color(std::abs(glm::dot(hit.shadingNormal(), glm::normalize(hit.ray().dir))));
 }
 
-Color NormalIntegrator::shade(const World&, const Ray&, const Hit&, const SurfaceInteraction& si,
-                              Pcg32&, ShadingStats&) const {
-    return 0.5f * si.Ns + Vec3(0.5f);
+Color NormalIntegrator::shade(const World&, const SurfaceHit& hit, SampleRng&,
+                              ShadingStats&) const {
+    return 0.5f * hit.shadingNormal() + Vec3(0.5f);
 }
 
 DepthIntegrator::DepthIntegrator(const World& world) {
@@ -22,16 +21,14 @@ DepthIntegrator::DepthIntegrator(const World& world) {
     invScale_ = diagonal > 0.0f ? 1.0f / diagonal : 1.0f;
 }
 
-Color DepthIntegrator::shade(const World&, const Ray& ray, const Hit& hit,
-                             const SurfaceInteraction&, Pcg32&, ShadingStats&) const {
-    // hit.t is in units of |ray.dir|; camera rays are unit length except for
-    // callers that pass unnormalised directions, so scale by the length.
-    return Color(hit.t * glm::length(ray.dir) * invScale_);
+Color DepthIntegrator::shade(const World&, const SurfaceHit& hit, SampleRng&, ShadingStats&) const {
+    // hit.t is in units of |ray.dir|: scale to a distance for any direction length.
+    return Color(hit.hit().t * glm::length(hit.ray().dir) * invScale_);
 }
 
-Color PrimIdIntegrator::shade(const World&, const Ray&, const Hit& hit,
-                              const SurfaceInteraction&, Pcg32&, ShadingStats&) const {
-    const uint64_t h = mixBits((uint64_t(hit.geomID) << 32) | hit.primID);
+Color PrimIdIntegrator::shade(const World&, const SurfaceHit& hit, SampleRng&,
+                              ShadingStats&) const {
+    const uint64_t h = mixBits((uint64_t(hit.hit().geomID) << 32) | hit.hit().primID);
     // Three 8-bit channels of the hash, kept away from black (0.15..1) so every
     // primitive is visible.
     auto channel = [h](int shift) { return 0.15f + 0.85f * float((h >> shift) & 0xFF) / 255.0f; };

@@ -9,10 +9,11 @@
 
 namespace strahl {
 
-Color DirectIntegrator::shade(const World& world, const Ray& ray, const Hit& hit,
-                              const SurfaceInteraction& si, Pcg32&, ShadingStats& stats) const {
-    const Material& material = world.material(hit, si);
-    const Vec3 wo = -glm::normalize(ray.dir);
+Color DirectIntegrator::shade(const World& world, const SurfaceHit& hit, SampleRng&,
+                              ShadingStats& stats) const {
+    const SurfaceInteraction& si = hit.interaction();
+    const Material& material = hit.material();
+    const Vec3 wo = -glm::normalize(hit.ray().dir);
 
     // Two-sided surfaces: flip both normals to the side the ray arrives from.
     Vec3 ng = si.Ng, ns = si.Ns;

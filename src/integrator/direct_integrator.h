@@ -8,8 +8,8 @@ namespace strahl {
 class DirectIntegrator final : public Integrator {
 public:
     std::string_view name() const override { return "direct"; }
-    Color shade(const World& world, const Ray& ray, const Hit& hit, const SurfaceInteraction& si,
-                Pcg32& rng, ShadingStats& stats) const override;
+    Color shade(const World& world, const SurfaceHit& hit, SampleRng& rng,
+                ShadingStats& stats) const override;
     Color miss(const World& world, const Ray&) const override { return world.background; }
 };
 

@@ -28,19 +28,22 @@ struct TileContext {
     const World& world;
     const Integrator& integrator;
     Film& film;
+    bool wantAovs;
     ShadingStats stats;
     uint64_t cameraRays = 0;
 
-    void shadeSample(int px, int py, const Ray& ray, const Hit& hit, Pcg32& rng) {
+    void shadeSample(int px, int py, const Ray& ray, const Hit& hit, SampleRng& rng) {
         Color L;
         AovSample aov;
         if (hit.valid()) {
-            const SurfaceInteraction si = world.interaction(hit);
-            L = integrator.shade(world, ray, hit, si, rng, stats);
+            const SurfaceHit surface(world, ray, hit);
+            L = integrator.shade(world, surface, rng, stats);
             aov.hit = true;
-            aov.normal = si.Ns;
-            aov.depth = hit.t * glm::length(ray.dir);
-            aov.albedo = world.material(hit, si).diffuse;
+            if (wantAovs) {
+                aov.normal = surface.shadingNormal();
+                aov.depth = hit.t * glm::length(ray.dir);
+                aov.albedo = surface.material().diffuse;
+            }
         } else {
             L = integrator.miss(world, ray);
         }
@@ -78,7 +81,7 @@ void renderTilePackets(TileContext& ctx, const TileRayGenerator& gen, const Pixe
 
 void renderTileSingle(TileContext& ctx, const TileRayGenerator& gen, const PixelRect& tile,
                       int spp) {
-    Pcg32 rng;
+    SampleRng rng;
     for (int s = 0; s < spp; ++s) {
         for (int y = tile.y0; y < tile.y1; ++y) {
             for (int x = tile.x0; x < tile.x1; ++x) {
@@ -123,7 +126,7 @@ RenderStats renderImage(const World& world, const Camera& camera, const Integrat
             tbb::blocked_range<size_t>(0, tiles.size(), 1),
             [&](const tbb::blocked_range<size_t>& range) {
                 for (size_t i = range.begin(); i != range.end(); ++i) {
-                    TileContext ctx{world, integrator, film, {}, 0};
+                    TileContext ctx{world, integrator, film, !film.aovs().empty(), {}, 0};
                     switch (result.packetWidth) {
                         case 16: renderTilePackets<16>(ctx, generator, tiles[i], options.spp); break;
                         case 8: renderTilePackets<8>(ctx, generator, tiles[i], options.spp); break;

@@ -132,7 +132,7 @@ TEST(Camera, WorldToCameraMapsTheFrameToTheAxes) {
 TEST(TileRayGenerator, OneSampleGoesThroughPixelCentres) {
     const Camera cam(obliqueFrame(), Projection::Perspective, ImageWindow{}, 1.0f, 9, 7);
     const TileRayGenerator gen(cam, 42, 1);
-    Pcg32 rng;
+    SampleRng rng;
     const Ray r = gen.sampleRay(3, 5, 0, rng);
     const Ray expected = cam.generateRay(3.5f, 5.5f);
     expectNear(r.origin, expected.origin);
@@ -142,7 +142,7 @@ TEST(TileRayGenerator, OneSampleGoesThroughPixelCentres) {
 TEST(TileRayGenerator, JitterIsDeterministicAndInsideThePixel) {
     const Camera cam(CameraFrame{}, Projection::Orthographic, ImageWindow{}, 1.0f, 8, 8);
     const TileRayGenerator gen(cam, 7, 4);
-    Pcg32 a, b;
+    SampleRng a, b;
     for (int s = 0; s < 4; ++s) {
         const Ray r1 = gen.sampleRay(2, 6, s, a);
         const Ray r2 = gen.sampleRay(2, 6, s, b);

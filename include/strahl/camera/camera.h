@@ -61,6 +61,7 @@ private:
     ImageWindow window_;
     float d_;
     int nx_, ny_;
+    float du_, dv_;  // (r - l) / nx and (b - t) / ny, the window's extent per pixel
 };
 
 }  // namespace strahl

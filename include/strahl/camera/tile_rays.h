@@ -28,7 +28,7 @@ struct CameraPacket {
     RayHitPacket<N> rays;
     alignas(64) int valid[N];  // -1 active, 0 inactive (Embree's convention)
     int px[N], py[N];
-    Pcg32 rng[N];
+    SampleRng rng[N];
 };
 
 class TileRayGenerator {
@@ -37,7 +37,7 @@ public:
         : camera_(camera), seed_(seed), spp_(spp) {}
 
     // Sample `s` of pixel (px, py); rng receives that sample's generator.
-    Ray sampleRay(int px, int py, int s, Pcg32& rng) const;
+    Ray sampleRay(int px, int py, int s, SampleRng& rng) const;
 
     // Fills the packet for the block whose top-left pixel is (bx, by), clipped to
     // `tile`. Returns the number of active lanes.

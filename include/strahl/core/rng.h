@@ -20,7 +20,7 @@ constexpr uint64_t mixBits(uint64_t v) {
 // PCG32 (O'Neill 2014, pcg32_random_r): small state, good statistics, streams.
 class Pcg32 {
 public:
-    Pcg32() { reseed(0, 0); }
+    Pcg32() = default;  // an unseeded placeholder; reseed() before use
     Pcg32(uint64_t seed, uint64_t stream) { reseed(seed, stream); }
 
     void reseed(uint64_t seed, uint64_t stream) {
@@ -50,5 +50,32 @@ inline Pcg32 pixelSampleRng(uint64_t seed, uint32_t px, uint32_t py, uint32_t sa
     const uint64_t pixel = (static_cast<uint64_t>(py) << 32) | px;
     return Pcg32(mixBits(seed ^ mixBits(pixel)), mixBits(sample + 0x9E3779B97F4A7C15ULL * seed));
 }
+
+// The random numbers of one camera sample: pixelSampleRng(seed, pixel, sample),
+// seeded on first use, so a sample that draws nothing (one centred sample
+// shaded by a deterministic integrator) costs nothing.
+class SampleRng {
+public:
+    SampleRng() = default;
+    SampleRng(uint64_t seed, uint32_t px, uint32_t py, uint32_t sample)
+        : seed_(seed), px_(px), py_(py), sample_(sample) {}
+
+    float nextFloat() { return generator().nextFloat(); }
+    uint32_t nextUint() { return generator().nextUint(); }
+
+private:
+    Pcg32& generator() {
+        if (!seeded_) {
+            rng_ = pixelSampleRng(seed_, px_, py_, sample_);
+            seeded_ = true;
+        }
+        return rng_;
+    }
+
+    Pcg32 rng_;
+    uint64_t seed_ = 0;
+    uint32_t px_ = 0, py_ = 0, sample_ = 0;
+    bool seeded_ = false;
+};
 
 }  // namespace strahl

@@ -20,6 +20,7 @@
 #include "strahl/core/math.h"
 #include "strahl/core/ray.h"
 #include "strahl/core/rng.h"
+#include "strahl/integrator/surface_hit.h"
 #include "strahl/integrator/world.h"
 
 namespace strahl {
@@ -34,9 +35,9 @@ public:
     virtual ~Integrator() = default;
     virtual std::string_view name() const = 0;
 
-    // Radiance along `ray`, whose closest hit is the valid `hit` with interaction si.
-    virtual Color shade(const World& world, const Ray& ray, const Hit& hit,
-                        const SurfaceInteraction& si, Pcg32& rng, ShadingStats& stats) const = 0;
+    // Radiance along a ray towards its closest hit.
+    virtual Color shade(const World& world, const SurfaceHit& hit, SampleRng& rng,
+                        ShadingStats& stats) const = 0;
     // Radiance along a ray that hit nothing.
     virtual Color miss(const World& world, const Ray& ray) const = 0;
 };
