@@ -3,6 +3,7 @@
 // are, and a skip for tests that need the shared data set.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <string>
@@ -12,9 +13,11 @@ namespace strahl::test {
 inline std::filesystem::path sourceDir() { return STRAHL_SOURCE_DIR; }
 inline std::filesystem::path sharedData() { return STRAHL_SHARED_DATA; }
 
-// A fresh, empty scratch folder for one test.
+// A fresh, empty scratch folder for one test. ctest runs every test in its own
+// process, several at once, so the folder name carries the process id.
 inline std::filesystem::path scratchDir(const std::string& name) {
-    auto dir = std::filesystem::temp_directory_path() / ("strahl-test-" + name);
+    auto dir = std::filesystem::temp_directory_path() /
+               ("strahl-test-" + name + "-" + std::to_string(getpid()));
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     return dir;
