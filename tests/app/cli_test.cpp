@@ -18,22 +18,14 @@ namespace strahl {
 namespace {
 
 namespace fs = std::filesystem;
+using test::contains;
+using test::readFile;
+using test::writeFile;
 
 struct RunResult {
     int status = -1;
     std::string out, err;
 };
-
-std::string readFile(const fs::path& p) {
-    std::ifstream in(p);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-void writeFile(const fs::path& p, const std::string& text) {
-    std::ofstream(p, std::ios::binary) << text;
-}
 
 // ctest runs tests in parallel processes: capture files are per process.
 RunResult run(const std::string& args) {
@@ -51,10 +43,6 @@ RunResult run(const std::string& args) {
     fs::remove(out);
     fs::remove(err);
     return r;
-}
-
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
 }
 
 // No file at all in `dir` (neither the output nor a temporary).

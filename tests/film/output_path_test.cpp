@@ -34,18 +34,10 @@ std::vector<std::string> listFolder(const fs::path& dir) {
 // The message of the strahl::Error that `action` throws, or "" after a failure.
 template <typename Action>
 std::string errorOf(Action action) {
-    try {
-        action();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "expected strahl::Error";
-    return "";
+    return test::errorMessage(action);
 }
 
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
+using test::contains;
 
 TEST(OutputPath, AcceptsSupportedExtensionsInAnyCaseAndLeavesNoProbeFile) {
     const fs::path dir = test::scratchDir("film-path-ok");

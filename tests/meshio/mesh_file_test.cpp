@@ -16,18 +16,10 @@ using ::testing::HasSubstr;
 namespace strahl {
 namespace {
 
-void writeFile(const fs::path& path, const std::string& text) {
-    fs::create_directories(path.parent_path());
-    std::ofstream(path, std::ios::binary) << text;
-}
+using test::writeFile;
 
 std::string errorOf(const fs::path& file) {
-    try {
-        loadMeshFile(file);
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
+    return test::errorMessage([&] { loadMeshFile(file); });
 }
 
 TEST(LoadMeshFile, DispatchesOnTheExtensionIgnoringCase) {

@@ -18,10 +18,7 @@ using ::testing::Not;
 namespace strahl {
 namespace {
 
-void writeFile(const fs::path& path, const std::string& text) {
-    fs::create_directories(path.parent_path());
-    std::ofstream(path, std::ios::binary) << text;
-}
+using test::writeFile;
 
 LoadedMesh loadText(const std::string& test, const std::string& text) {
     const fs::path file = test::scratchDir(test) / "mesh.obj";

@@ -241,12 +241,7 @@ TEST(PlyLoader, VertexIndexNameAndPropertylessElementsWithHugeCounts) {
 // Errors
 
 std::string errorOf(const fs::path& file) {
-    try {
-        loadPly(file);
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
+    return test::errorMessage([&] { loadPly(file); });
 }
 
 struct BadHeader {

@@ -32,13 +32,7 @@ SceneDesc parseWith(const std::string& sections) {
 
 // The message of the strahl::Error that parsing `text` throws.
 std::string errorOf(const std::string& text) {
-    try {
-        parse(text);
-    } catch (const Error& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no error for: " << text;
-    return {};
+    return test::errorMessage([&] { parse(text); });
 }
 
 std::string errorWith(const std::string& sections) {
@@ -52,10 +46,7 @@ std::string triangleWith(const std::string& extra) {
            extra + "}]}";
 }
 
-void writeFile(const fs::path& path, const std::string& content) {
-    fs::create_directories(path.parent_path());
-    std::ofstream(path) << content;
-}
+using test::writeFile;
 
 void expectNear(const Vec3& actual, const Vec3& expected) {
     EXPECT_NEAR(actual.x, expected.x, 1e-5f);
