@@ -6,6 +6,7 @@
 
 #include "strahl/core/error.h"
 #include "strahl/film/image_output.h"
+#include "strahl/meshio/mesh_file.h"
 #include "strahl/render/progress.h"
 #include "strahl/render/renderer.h"
 #include "strahl/scene/scene_builder.h"
@@ -81,6 +82,7 @@ int runRender(const Options& o) {
     requireIntegratorName(desc.render.integrator);
     const PixelRect crop = cropWindow(o, desc);
 
+    if (o.quiet) setMeshWarningHandler([](const std::string&) {});
     ProgressReporter progress(ProgressReporter::defaultStyle(o.quiet));
     BuildOptions build;
     build.threads = o.threads.value_or(0);

@@ -64,7 +64,7 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
                                         "(repeat; overrides film.aovs)")
         ->check(CLI::IsMember({"normal", "depth", "albedo"}));
     render->add_flag("--exr-float", o.exrFloat, "Write 32-bit float EXR channels instead of half");
-    render->add_flag("-q,--quiet", o.quiet, "No progress display and no summary");
+    render->add_flag("-q,--quiet", o.quiet, "No progress display, summary or mesh warnings");
     std::string packets = "auto";
     render->add_option("--packets", packets,
                        "Camera-ray tracing: auto (16-wide with AVX-512, else 8), 16, 8, or single "

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <mutex>
 #include <system_error>
 #include <vector>
 
@@ -47,8 +48,18 @@ std::string readWholeFile(const fs::path& file) {
     return data;
 }
 
+namespace {
+std::mutex warningMutex;
+MeshWarningHandler warningHandler;  // empty: print to stderr
+}  // namespace
+
 void warn(const std::string& message) {
-    std::fprintf(stderr, "strahl: warning: %s\n", message.c_str());
+    // Loaders run in parallel; one lock keeps lines whole and the handler safe.
+    std::lock_guard lock(warningMutex);
+    if (warningHandler)
+        warningHandler(message);
+    else
+        std::fprintf(stderr, "strahl: warning: %s\n", message.c_str());
 }
 
 std::string toLower(std::string_view s) {
@@ -60,6 +71,11 @@ std::string toLower(std::string_view s) {
 }
 
 }  // namespace meshio
+
+void setMeshWarningHandler(MeshWarningHandler handler) {
+    std::lock_guard lock(meshio::warningMutex);
+    meshio::warningHandler = std::move(handler);
+}
 
 LoadedMesh loadMeshFile(const fs::path& file) {
     const std::string ext = meshio::toLower(file.extension().string());

@@ -83,12 +83,18 @@ TEST(Cli, RendersExrAndPngAndPrintsASummary) {
     EXPECT_EQ(files, 3u) << "no temporary files left";
 }
 
-TEST(Cli, QuietPrintsNothing) {
+TEST(Cli, QuietPrintsNothingNotEvenMeshWarnings) {
     const fs::path dir = test::scratchDir("cli-quiet");
-    writeFile(dir / "quad.json", kQuad);
-    const RunResult r = run("render -q " + (dir / "quad.json").string() + " -o " + (dir / "a.exr").string());
-    EXPECT_EQ(r.status, 0);
-    EXPECT_EQ(r.err, "");
+    // An OBJ whose material library is missing: a warning, not an error.
+    writeFile(dir / "tri.obj", "mtllib missing.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    writeFile(dir / "tri.json", R"({ "shapes": [ { "type": "mesh", "file": "tri.obj" } ] })");
+    const std::string args = (dir / "tri.json").string() + " -o " + (dir / "a.exr").string();
+    const RunResult loud = run("render " + args);
+    EXPECT_EQ(loud.status, 0) << loud.err;
+    EXPECT_TRUE(contains(loud.err, "strahl: warning:")) << loud.err;
+    const RunResult quiet = run("render -q " + args);
+    EXPECT_EQ(quiet.status, 0);
+    EXPECT_EQ(quiet.err, "");
 }
 
 TEST(Cli, OneAndTwoThreadsGiveIdenticalPixels) {

@@ -105,3 +105,22 @@ TEST_F(FindFile, MissingFilesAndFoldersGiveAnEmptyPath) {
 
 }  // namespace
 }  // namespace strahl
+
+namespace strahl {
+namespace {
+
+TEST(MeshWarnings, GoToTheInstalledHandler) {
+    const fs::path dir = test::scratchDir("meshfile-warnings");
+    test::writeFile(dir / "t.obj", "mtllib nowhere.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    std::vector<std::string> seen;
+    setMeshWarningHandler([&](const std::string& message) { seen.push_back(message); });
+    const LoadedMesh mesh = loadMeshFile(dir / "t.obj");
+    setMeshWarningHandler({});  // back to stderr for the other tests
+    EXPECT_EQ(mesh.mesh.triangleCount(), 1u);
+    ASSERT_EQ(seen.size(), 1u);
+    EXPECT_TRUE(test::contains(seen[0], "t.obj:1")) << seen[0];
+    EXPECT_TRUE(test::contains(seen[0], "nowhere.mtl")) << seen[0];
+}
+
+}  // namespace
+}  // namespace strahl

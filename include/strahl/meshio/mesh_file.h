@@ -5,6 +5,7 @@
 // malformed, truncated or out-of-range input.
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,14 @@ struct LoadedMesh {
 
 LoadedMesh loadObj(const std::filesystem::path& file);
 LoadedMesh loadPly(const std::filesystem::path& file);
+
+// Recoverable problems (a missing .mtl, an unknown material, an attribute only
+// some corners have) are warnings, not errors. They go to the handler set here,
+// from any loader thread but one at a time; with no handler (the default) each
+// is printed as "strahl: warning: <message>" on stderr. The CLI's --quiet
+// installs a handler that drops them.
+using MeshWarningHandler = std::function<void(const std::string& message)>;
+void setMeshWarningHandler(MeshWarningHandler handler);
 
 // Dispatches on the extension (.obj, .ply; case-insensitive).
 LoadedMesh loadMeshFile(const std::filesystem::path& file);
