@@ -65,18 +65,11 @@ Fixture& fixture(const std::string& meshPath = {}) {
     return f;
 }
 
-std::vector<PixelRect> tiles() {
-    std::vector<PixelRect> t;
-    for (int y = 0; y < kSize; y += kTile)
-        for (int x = 0; x < kSize; x += kTile) t.push_back({x, y, x + kTile, y + kTile});
-    return t;
-}
-
 template <int N>
 void bareLoop(benchmark::State& state) {
     Fixture& f = fixture();
     const TileRayGenerator gen(f.camera, 0, 1);
-    const std::vector<PixelRect> tileList = tiles();
+    const std::vector<PixelRect> tileList = cutTiles(PixelRect{0, 0, kSize, kSize}, kTile);
     // Ray generation is outside the timed loop: only traversal is measured.
     std::vector<std::vector<CameraPacket<N>>> packets(tileList.size());
     for (size_t i = 0; i < tileList.size(); ++i) {
@@ -95,10 +88,7 @@ void bareLoop(benchmark::State& state) {
                     for (const CameraPacket<N>& source : packets[i]) {
                         RayHitPacket<N> p;
                         std::memcpy(&p, &source.rays, sizeof p);  // fresh tfar/geomID
-                        if constexpr (N == 16)
-                            f.world.accel->intersect16(source.valid, p, RayCoherence::Coherent);
-                        else
-                            f.world.accel->intersect8(source.valid, p, RayCoherence::Coherent);
+                        f.world.accel->intersectPacket(source.valid, p, RayCoherence::Coherent);
                         benchmark::DoNotOptimize(p.geomID[0]);
                     }
                 }

@@ -16,16 +16,6 @@ namespace strahl::app {
 
 namespace {
 
-// The largest image strahl agrees to allocate: 2^28 pixels (16384^2), about
-// 9 GiB of film buffers with all AOVs.
-constexpr long long kMaxPixels = 1LL << 28;
-
-AovKind parseAov(const std::string& name) {
-    if (name == "normal") return AovKind::Normal;
-    if (name == "depth") return AovKind::Depth;
-    return AovKind::Albedo;  // the CLI only admits the three names
-}
-
 // Applies the command-line overrides to the scene description.
 void applyOverrides(const Options& o, SceneDesc& desc) {
     if (o.width) desc.film.width = *o.width;
@@ -37,7 +27,7 @@ void applyOverrides(const Options& o, SceneDesc& desc) {
     if (!o.aovs.empty()) {
         desc.film.aovs.clear();
         for (const std::string& a : o.aovs) {
-            const AovKind kind = parseAov(a);
+            const AovKind kind = *aovFromName(a);  // the CLI admits only aovNames()
             if (std::find(desc.film.aovs.begin(), desc.film.aovs.end(), kind) == desc.film.aovs.end())
                 desc.film.aovs.push_back(kind);
         }
@@ -72,9 +62,9 @@ std::string humanCount(double n) {
 int runRender(const Options& o) {
     SceneDesc desc = parseSceneFile(o.scene);
     applyOverrides(o, desc);
-    if (static_cast<long long>(desc.film.width) * desc.film.height > kMaxPixels)
+    if (static_cast<long long>(desc.film.width) * desc.film.height > kMaxFilmPixels)
         fail("image of ", desc.film.width, "x", desc.film.height, " pixels is larger than the limit of ",
-             kMaxPixels, " pixels");
+             kMaxFilmPixels, " pixels");
     if (desc.film.outputs.empty())
         fail(o.scene, ": no output image: give -o FILE or film.outputs in the scene");
     // Fail on a bad output path or integrator name now, not after a long render.

@@ -6,7 +6,9 @@
 #include <iostream>
 
 #include "strahl/core/error.h"
+#include "strahl/film/film.h"
 #include "strahl/integrator/integrator.h"
+#include "strahl/scene/scene_desc.h"
 
 namespace strahl::app {
 
@@ -46,9 +48,9 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
                        ".png/.jpg/.tif go through the OCIO display transform. "
                        "Default: the scene's film.outputs");
     render->add_option("--width", o.width, "Image width in pixels (overrides film.width)")
-        ->check(CLI::Range(1, 32768));
+        ->check(CLI::Range(1, kMaxFilmSide));
     render->add_option("--height", o.height, "Image height in pixels (overrides film.height)")
-        ->check(CLI::Range(1, 32768));
+        ->check(CLI::Range(1, kMaxFilmSide));
     render->add_option("--spp", o.spp, "Samples per pixel (overrides render.spp)")
         ->check(CLI::Range(1, 65536));
     render->add_option("--threads", o.threads, "Worker threads; 0 = all cores (default)")
@@ -62,7 +64,7 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
                        "Render only pixels X0<=x<X1, Y0<=y<Y1 (y=0 at the top): X0,Y0,X1,Y1");
     render->add_option("--aov", o.aovs, "AOV written to EXR outputs: normal, depth, albedo "
                                         "(repeat; overrides film.aovs)")
-        ->check(CLI::IsMember({"normal", "depth", "albedo"}));
+        ->check(CLI::IsMember(std::vector<std::string>(aovNames().begin(), aovNames().end())));
     render->add_flag("--exr-float", o.exrFloat, "Write 32-bit float EXR channels instead of half");
     render->add_flag("-q,--quiet", o.quiet, "No progress display, summary or mesh warnings");
     std::string packets = "auto";

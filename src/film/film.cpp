@@ -7,16 +7,23 @@
 
 namespace strahl {
 
+
+namespace {
+constexpr std::string_view kAovNames[] = {"normal", "depth", "albedo"};  // enum order
+}  // namespace
+
+std::span<const std::string_view> aovNames() { return kAovNames; }
+
 const char* aovName(AovKind kind) {
-    switch (kind) {
-        case AovKind::Normal:
-            return "normal";
-        case AovKind::Depth:
-            return "depth";
-        case AovKind::Albedo:
-            return "albedo";
-    }
-    fail("invalid AovKind value ", static_cast<int>(kind));
+    const auto i = static_cast<size_t>(kind);
+    if (i >= std::size(kAovNames)) fail("invalid AovKind value ", static_cast<int>(kind));
+    return kAovNames[i].data();  // literals: NUL-terminated
+}
+
+std::optional<AovKind> aovFromName(std::string_view name) {
+    for (size_t i = 0; i < std::size(kAovNames); ++i)
+        if (kAovNames[i] == name) return static_cast<AovKind>(i);
+    return std::nullopt;
 }
 
 int aovChannels(AovKind kind) {

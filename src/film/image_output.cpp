@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cctype>
 #include <cerrno>
@@ -43,6 +44,13 @@ constexpr Format kFormats[] = {
     {".jpg", "jpeg", Encoding::Display8},          {".jpeg", "jpeg", Encoding::Display8},
     {".tif", "tiff", Encoding::Display16},         {".tiff", "tiff", Encoding::Display16},
 };
+
+// The extensions of kFormats, as the public list.
+constexpr auto kExtensions = [] {
+    std::array<std::string_view, std::size(kFormats)> extensions{};
+    for (size_t i = 0; i < extensions.size(); ++i) extensions[i] = kFormats[i].extension;
+    return extensions;
+}();
 
 std::string supportedExtensions() {
     std::string list;
@@ -201,6 +209,8 @@ void writeFile(const fs::path& file, const Format& format, OIIO::ImageSpec& spec
 }
 
 }  // namespace
+
+std::span<const std::string_view> supportedImageExtensions() { return kExtensions; }
 
 void checkOutputPath(const fs::path& file) {
     formatOf(file);

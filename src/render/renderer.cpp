@@ -13,8 +13,6 @@
 
 namespace strahl {
 
-namespace {
-
 std::vector<PixelRect> cutTiles(const PixelRect& crop, int size) {
     std::vector<PixelRect> tiles;
     for (int y = crop.y0; y < crop.y1; y += size)
@@ -22,6 +20,8 @@ std::vector<PixelRect> cutTiles(const PixelRect& crop, int size) {
             tiles.push_back({x, y, std::min(x + size, crop.x1), std::min(y + size, crop.y1)});
     return tiles;
 }
+
+namespace {
 
 // Everything one worker needs while rendering one tile.
 struct TileContext {
@@ -63,10 +63,7 @@ void renderTilePackets(TileContext& ctx, const TileRayGenerator& gen, const Pixe
         for (int by = tile.y0; by < tile.y1; by += Packet::kBlockHeight) {
             for (int bx = tile.x0; bx < tile.x1; bx += Packet::kBlockWidth) {
                 ctx.cameraRays += static_cast<uint64_t>(gen.fillPacket(tile, bx, by, s, packet));
-                if constexpr (N == 16)
-                    ctx.world.accel->intersect16(packet.valid, packet.rays, RayCoherence::Coherent);
-                else
-                    ctx.world.accel->intersect8(packet.valid, packet.rays, RayCoherence::Coherent);
+                ctx.world.accel->intersectPacket(packet.valid, packet.rays, RayCoherence::Coherent);
                 for (int lane = 0; lane < N; ++lane) {
                     if (!packet.valid[lane]) continue;
                     Ray ray = packet.rays.ray(lane);

@@ -10,11 +10,6 @@ namespace {
 
 using nlohmann::json;
 
-std::string joinList(std::initializer_list<std::string_view> items) {
-    std::string list;
-    for (std::string_view item : items) list += (list.empty() ? "" : ", ") + std::string(item);
-    return list;
-}
 
 // "LINE:COLUMN" (1-based; columns count bytes) of the 0-based byte `offset`.
 std::string lineColumn(const std::string& text, size_t offset) {
@@ -101,7 +96,7 @@ void JsonValue::requireKeys(std::initializer_list<std::string_view> allowed) con
     if (!value_->is_object()) fail("expected an object, got ", describe());
     for (const auto& item : value_->items()) {
         if (std::find(allowed.begin(), allowed.end(), item.key()) != allowed.end()) continue;
-        fail("unknown key '", item.key(), "' (allowed: ", joinList(allowed), ")");
+        fail("unknown key '", item.key(), "' (allowed: ", joinList(std::span(allowed.begin(), allowed.size())), ")");
     }
 }
 
@@ -156,7 +151,7 @@ std::string JsonValue::string() const {
     return value_->get<std::string>();
 }
 
-std::string JsonValue::oneOf(std::initializer_list<std::string_view> choices) const {
+std::string JsonValue::oneOf(std::span<const std::string_view> choices) const {
     std::string s = string();
     if (std::find(choices.begin(), choices.end(), s) != choices.end()) return s;
     fail("must be one of ", joinList(choices), ", got '", s, "'");
@@ -260,6 +255,12 @@ Color JsonValue::color() const {
 std::string JsonValue::describe() const {
     if (value_->is_number()) return concat("number ", value_->dump());
     return value_->type_name();
+}
+
+std::string joinList(std::span<const std::string_view> items) {
+    std::string list;
+    for (std::string_view item : items) list += (list.empty() ? "" : ", ") + std::string(item);
+    return list;
 }
 
 }  // namespace strahl::scene_detail

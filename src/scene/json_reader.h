@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdint>
 #include <initializer_list>
+#include <span>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -55,7 +56,10 @@ public:
     bool boolean() const;
     std::string string() const;
     // One of `choices`; throws "must be one of a, b, got 'c'".
-    std::string oneOf(std::initializer_list<std::string_view> choices) const;
+    std::string oneOf(std::span<const std::string_view> choices) const;
+    std::string oneOf(std::initializer_list<std::string_view> choices) const {
+        return oneOf(std::span(choices.begin(), choices.size()));
+    }
     // A number whose value is finite as a float.
     float number() const;
     // An integer (an integral number such as 2 or 2.0) in [lo, hi].
@@ -84,5 +88,8 @@ private:
     std::string pointer_;
     const std::string* label_;
 };
+
+// "a, b, c": the items joined for error messages.
+std::string joinList(std::span<const std::string_view> items);
 
 }  // namespace strahl::scene_detail

@@ -13,10 +13,13 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
 #include <memory>
+#include <span>
 #include <string_view>
 
 #include "json_reader.h"
 #include "strahl/core/error.h"
+#include "strahl/film/image_output.h"
+#include "strahl/integrator/integrator.h"
 #include "strahl/scene/scene_desc.h"
 
 namespace strahl {
@@ -24,9 +27,8 @@ namespace {
 
 namespace fs = std::filesystem;
 using scene_detail::JsonValue;
+using scene_detail::joinList;
 
-constexpr int64_t kMaxFilmSide = 32768;
-constexpr int64_t kMaxFilmPixels = int64_t(1) << 28;
 constexpr int64_t kMaxSpp = 65536;
 // Below this sine of the angle between up and the viewing axis, the camera frame
 // is undefined.
@@ -42,7 +44,7 @@ Vec3 unitVector(const Vec3& v) {
     return glm::normalize(v / maxComponent(glm::abs(v)));
 }
 
-bool hasExtension(const fs::path& path, std::initializer_list<std::string_view> extensions) {
+bool hasExtension(const fs::path& path, std::span<const std::string_view> extensions) {
     std::string ext = path.extension().string();
     for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
     for (std::string_view allowed : extensions) {
@@ -145,19 +147,17 @@ FilmDesc parseFilm(const JsonValue& v, const fs::path& folder) {
         for (size_t i = 0; i < outputs->size(); ++i) {
             const JsonValue output = outputs->at(i);
             fs::path path = resolvePath(folder, output);
-            if (!hasExtension(path, {".exr", ".png", ".jpg", ".jpeg", ".tif", ".tiff"}))
+            if (!hasExtension(path, supportedImageExtensions()))
                 output.fail("'", path.filename().string(), "' is not a supported image format ",
-                            "(extensions: .exr, .png, .jpg, .jpeg, .tif, .tiff)");
+                            "(extensions: ", joinList(supportedImageExtensions()), ")");
             f.outputs.push_back(std::move(path));
         }
     }
     if (auto aovs = v.find("aovs")) {
         for (size_t i = 0; i < aovs->size(); ++i) {
             const JsonValue aov = aovs->at(i);
-            const std::string name = aov.oneOf({"normal", "depth", "albedo"});
-            const AovKind kind = name == "normal"  ? AovKind::Normal
-                                 : name == "depth" ? AovKind::Depth
-                                                   : AovKind::Albedo;
+            const std::string name = aov.oneOf(aovNames());
+            const AovKind kind = *aovFromName(name);
             if (std::find(f.aovs.begin(), f.aovs.end(), kind) != f.aovs.end())
                 aov.fail("'", name, "' is listed twice");
             f.aovs.push_back(kind);
@@ -171,7 +171,7 @@ RenderDesc parseRender(const JsonValue& v) {
     v.requireKeys({"integrator", "spp", "seed"});
     RenderDesc r;
     if (auto integrator = v.find("integrator"))
-        r.integrator = integrator->oneOf({"eyelight", "normal", "depth", "primid", "direct"});
+        r.integrator = integrator->oneOf(integratorNames());
     if (auto spp = v.find("spp")) r.spp = static_cast<int>(spp->integer(1, kMaxSpp));
     if (auto seed = v.find("seed"))
         r.seed = seed->unsignedInteger(std::numeric_limits<uint64_t>::max());
@@ -266,7 +266,8 @@ void checkMeshFile(const JsonValue& value, const fs::path& path) {
         value.fail("no such file '", given, "' (looked at ", path.string(), ")");
     if (!fs::is_regular_file(path, ec))
         value.fail("'", given, "' is not a regular file (looked at ", path.string(), ")");
-    if (!hasExtension(path, {".obj", ".ply"}))
+    constexpr std::string_view kMeshExtensions[] = {".obj", ".ply"};
+    if (!hasExtension(path, kMeshExtensions))
         value.fail("'", given, "' is not a supported mesh format (extensions: .obj, .ply)");
 }
 

@@ -36,6 +36,14 @@ public:
     virtual void intersect8(const int* valid, RayHitPacket8& packet, RayCoherence c) const = 0;
     virtual void intersect16(const int* valid, RayHitPacket16& packet, RayCoherence c) const = 0;
 
+    // intersect8/16 under one name, for code templated on the packet width.
+    void intersectPacket(const int* valid, RayHitPacket8& packet, RayCoherence c) const {
+        intersect8(valid, packet, c);
+    }
+    void intersectPacket(const int* valid, RayHitPacket16& packet, RayCoherence c) const {
+        intersect16(valid, packet, c);
+    }
+
     // The widest packet the implementation traces natively (16, 8 or 1).
     virtual int nativePacketWidth() const = 0;
 

@@ -5,6 +5,9 @@
 // so no locking is needed and the summation order is fixed (deterministic).
 
 #include <cstdint>
+#include <optional>
+#include <span>
+#include <string_view>
 #include <string>
 #include <vector>
 
@@ -14,13 +17,15 @@
 namespace strahl {
 
 // Arbitrary output variables written next to the beauty pass.
-enum class AovKind {
+enum class AovKind {  // values 0, 1, 2 in the order of aovNames()
     Normal,  // world-space shading normal of the first hit, mean over samples (0 for misses)
     Depth,   // ray distance to the first hit, mean over the samples that hit; +inf if none did
     Albedo,  // diffuse reflectance of the first hit, mean over samples (0 for misses)
 };
 
 const char* aovName(AovKind kind);  // "normal", "depth", "albedo"
+std::span<const std::string_view> aovNames();  // every AOV's name, in enum order
+std::optional<AovKind> aovFromName(std::string_view name);
 int aovChannels(AovKind kind);      // 3, 1, 3
 
 // First-hit values of one camera sample, for the AOVs.

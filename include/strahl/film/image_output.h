@@ -11,7 +11,9 @@
 
 #include <filesystem>
 #include <map>
+#include <span>
 #include <string>
+#include <string_view>
 
 #include "strahl/film/display_transform.h"
 #include "strahl/film/film.h"
@@ -33,6 +35,9 @@ struct ImageMetadata {
     Mat4 worldToCamera{1.0f};
     std::map<std::string, std::string> extra;
 };
+
+// The extensions writeImage accepts, lower case with the dot (".exr", ...).
+std::span<const std::string_view> supportedImageExtensions();
 
 // Throws strahl::Error if the extension is not supported or the folder is not
 // writable (checked by creating and removing a temporary file), so a render can

@@ -6,6 +6,7 @@
 // sample order, so the image is bit-identical for any thread count.
 
 #include <cstdint>
+#include <vector>
 
 #include "strahl/camera/camera.h"
 #include "strahl/film/film.h"
@@ -34,6 +35,10 @@ struct RenderStats {
     uint64_t shadowRays = 0;
     int packetWidth = 1;  // the width actually used
 };
+
+// The tiles of `crop`, size x size pixels (smaller at the right and bottom
+// edges), row by row from the top left.
+std::vector<PixelRect> cutTiles(const PixelRect& crop, int size);
 
 // The packet width `mode` resolves to on this accelerator.
 int resolvePacketWidth(PacketMode mode, const Accel& accel);

@@ -28,6 +28,12 @@ struct CameraDesc {
     std::optional<ImageWindow> window;  // default: fov 45 deg (persp.), [-1,1]^2 (ortho.)
 };
 
+// Image size limits, for the scene file and the command line alike: each side
+// at most 32768 pixels and at most 2^28 pixels in all (16384^2, about 9 GiB of
+// film buffers with every AOV).
+inline constexpr int kMaxFilmSide = 32768;
+inline constexpr long long kMaxFilmPixels = 1LL << 28;
+
 struct FilmDesc {
     int width = 640;
     int height = 480;
