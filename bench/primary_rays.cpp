@@ -42,13 +42,13 @@ struct Fixture {
 Fixture& fixture(const std::string& meshPath = {}) {
     static Fixture f = [&] {
         Fixture fx;
-        MeshGeometry g;
+        SceneShape g;
         g.name = "bench";
         g.mesh = benchmarkMesh(meshPath, kMinTriangles, fx.meshDescription);
         g.materialOfSlot = {0};
         fx.world.materials.push_back(Material{"default", Color(0.8f), Color(0.0f)});
-        fx.world.meshes.push_back(std::move(g));
-        const TriangleMesh* meshes[] = {&fx.world.meshes[0].mesh};
+        fx.world.shapes.push_back(std::move(g));
+        const TriangleMesh* meshes[] = {&fx.world.shapes[0].mesh};
         fx.world.accel = buildEmbreeAccel(meshes, {});
         // Frame the bounding box from the front so the mesh fills the image: the
         // figure of merit is traversal of a dense mesh, not rays that miss it.

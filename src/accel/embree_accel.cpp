@@ -1,8 +1,15 @@
-// EmbreeAccel: triangle meshes in one Embree 3 scene.
+// EmbreeAccel: triangle meshes and user shapes in one Embree 3 scene.
 //
 // Invariants:
-//  - geomID == index of the mesh in the span handed to buildEmbreeAccel
-//    (rtcAttachGeometryByID), so shading finds a hit's mesh without a map.
+//  - geomID == index of the shape in the span handed to buildEmbreeAccel
+//    (rtcAttachGeometryByID), so shading finds a hit's shape without a map.
+//  - Every UserShape goes through one generic user-geometry adapter (the
+//    callbacks below), following the Embree 3 contract of ../shared/GUIDE.md §3:
+//    callbacks handle any packet width N, read valid[] only, accept a hit only
+//    inside (tnear, tfar) — the shape's own intersect() guarantees that — write
+//    tfar/u/v/Ng/primID/geomID and instID on a hit and nothing on a miss, and
+//    set tfar = -inf for an occlusion. Shapes' intersect() is noexcept, so no
+//    exception can cross Embree.
 //  - Vertex and index buffers are shared with Embree (zero copy) when the
 //    mesh's position vector has the spare element Embree's 16-byte vertex loads
 //    need (TriangleMesh::reservePadding); otherwise they are copied once into an
@@ -19,6 +26,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstring>
+#include <vector>
 
 #include "embree_device.h"
 #include "strahl/accel/accel.h"
@@ -79,17 +87,80 @@ RTCRayHit toEmbree(const Ray& ray) {
     return rh;
 }
 
+// ---- the generic user-geometry adapter --------------------------------------
+
+Ray rayFromN(RTCRayN* rays, unsigned N, unsigned i) {
+    Ray ray;
+    ray.origin = Vec3(RTCRayN_org_x(rays, N, i),
+                      RTCRayN_org_y(rays, N, i),
+                      RTCRayN_org_z(rays, N, i));
+    ray.dir = Vec3(RTCRayN_dir_x(rays, N, i),
+                   RTCRayN_dir_y(rays, N, i),
+                   RTCRayN_dir_z(rays, N, i));
+    ray.tnear = RTCRayN_tnear(rays, N, i);
+    ray.tfar = RTCRayN_tfar(rays, N, i);
+    return ray;
+}
+
+void userBounds(const RTCBoundsFunctionArguments* args) {
+    const auto* shape = static_cast<const UserShape*>(args->geometryUserPtr);
+    const Bounds3 b = shape->primitiveBounds(args->primID);
+    args->bounds_o->lower_x = b.min.x;
+    args->bounds_o->lower_y = b.min.y;
+    args->bounds_o->lower_z = b.min.z;
+    args->bounds_o->upper_x = b.max.x;
+    args->bounds_o->upper_y = b.max.y;
+    args->bounds_o->upper_z = b.max.z;
+}
+
+void userIntersect(const RTCIntersectFunctionNArguments* args) {
+    const auto* shape = static_cast<const UserShape*>(args->geometryUserPtr);
+    const unsigned N = args->N;
+    RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, N);
+    RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, N);
+    for (unsigned i = 0; i < N; ++i) {
+        if (args->valid[i] != -1) continue;
+        Hit hit;
+        if (!shape->intersect(rayFromN(rays, N, i), args->primID, hit)) continue;
+        RTCRayN_tfar(rays, N, i) = hit.t;
+        RTCHitN_Ng_x(hits, N, i) = hit.Ng.x;
+        RTCHitN_Ng_y(hits, N, i) = hit.Ng.y;
+        RTCHitN_Ng_z(hits, N, i) = hit.Ng.z;
+        RTCHitN_u(hits, N, i) = hit.u;
+        RTCHitN_v(hits, N, i) = hit.v;
+        RTCHitN_primID(hits, N, i) = args->primID;
+        RTCHitN_geomID(hits, N, i) = args->geomID;
+        for (unsigned level = 0; level < RTC_MAX_INSTANCE_LEVEL_COUNT; ++level)
+            RTCHitN_instID(hits, N, i, level) = args->context->instID[level];
+    }
+}
+
+void userOccluded(const RTCOccludedFunctionNArguments* args) {
+    const auto* shape = static_cast<const UserShape*>(args->geometryUserPtr);
+    const unsigned N = args->N;
+    for (unsigned i = 0; i < N; ++i) {
+        if (args->valid[i] != -1) continue;
+        if (shape->occluded(rayFromN(args->ray, N, i), args->primID))
+            RTCRayN_tfar(args->ray, N, i) = -kInfinity;
+    }
+}
+
+// ---- the accelerator -----------------------------------------------------------
+
 class EmbreeAccel final : public Accel {
 public:
-    EmbreeAccel(std::span<const TriangleMesh* const> meshes, const AccelBuildOptions& options)
+    EmbreeAccel(std::span<const ShapeRef> shapes, const AccelBuildOptions& options)
         : device_(options.threads), progress_(options.progress) {
         scene_ = rtcNewScene(device_.handle());
         device_.check("creating the scene");
         rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
         if (progress_) rtcSetSceneProgressMonitorFunction(scene_, &EmbreeAccel::onProgress, this);
-        for (size_t i = 0; i < meshes.size(); ++i) {
-            attachMesh(*meshes[i], static_cast<unsigned>(i));
-            bounds_.expand(meshes[i]->bounds());
+        for (size_t i = 0; i < shapes.size(); ++i) {
+            if (shapes[i].mesh)
+                attachMesh(*shapes[i].mesh, static_cast<unsigned>(i));
+            else
+                attachUserShape(*shapes[i].user, static_cast<unsigned>(i));
+            bounds_.expand(shapes[i].bounds());
         }
         rtcCommitScene(scene_);
         device_.check("building the BVH");
@@ -160,6 +231,25 @@ private:
         device_.check("adding a triangle mesh");
     }
 
+    void attachUserShape(const UserShape& shape, unsigned geomID) {
+        const uint32_t count = shape.primitiveCount();
+        for (uint32_t prim = 0; prim < count; ++prim) {
+            const Bounds3 b = shape.primitiveBounds(prim);
+            if (b.empty() || !isFinite(b.min) || !isFinite(b.max))
+                fail("shape ", geomID, ": primitive ", prim, " has no finite bounds");
+        }
+        RTCGeometry geom = rtcNewGeometry(device_.handle(), RTC_GEOMETRY_TYPE_USER);
+        rtcSetGeometryUserPrimitiveCount(geom, count);
+        rtcSetGeometryUserData(geom, const_cast<UserShape*>(&shape));
+        rtcSetGeometryBoundsFunction(geom, &userBounds, nullptr);
+        rtcSetGeometryIntersectFunction(geom, &userIntersect);
+        rtcSetGeometryOccludedFunction(geom, &userOccluded);
+        rtcCommitGeometry(geom);
+        rtcAttachGeometryByID(scene_, geom, geomID);
+        rtcReleaseGeometry(geom);
+        device_.check("adding a user shape");
+    }
+
     static bool onProgress(void* self, double fraction) {
         auto* accel = static_cast<EmbreeAccel*>(self);
         accel->progress_(std::clamp(fraction, 0.0, 1.0));
@@ -174,9 +264,17 @@ private:
 
 }  // namespace
 
+std::unique_ptr<Accel> buildEmbreeAccel(std::span<const ShapeRef> shapes,
+                                        const AccelBuildOptions& options) {
+    return std::make_unique<EmbreeAccel>(shapes, options);
+}
+
 std::unique_ptr<Accel> buildEmbreeAccel(std::span<const TriangleMesh* const> meshes,
                                         const AccelBuildOptions& options) {
-    return std::make_unique<EmbreeAccel>(meshes, options);
+    std::vector<ShapeRef> shapes;
+    shapes.reserve(meshes.size());
+    for (const TriangleMesh* mesh : meshes) shapes.push_back(ShapeRef{mesh, nullptr});
+    return std::make_unique<EmbreeAccel>(shapes, options);
 }
 
 const char* embreeVersion() { return RTC_VERSION_STRING; }

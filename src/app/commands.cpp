@@ -6,6 +6,7 @@
 
 #include "strahl/core/error.h"
 #include "strahl/film/image_output.h"
+#include "strahl/geometry/implicit_shape.h"
 #include "strahl/meshio/mesh_file.h"
 #include "strahl/render/progress.h"
 #include "strahl/render/renderer.h"
@@ -76,6 +77,7 @@ int runRender(const Options& o) {
     ProgressReporter progress(ProgressReporter::defaultStyle(o.quiet));
     BuildOptions build;
     build.threads = o.threads.value_or(0);
+    build.accel = accelFromName(o.accel);
     build.bvhStarted = [&] { progress.begin("bvh", 1); };
     build.bvhProgress = [&](double f) { progress.setFraction(f); };
     BuildTimings timings;
@@ -106,6 +108,7 @@ int runRender(const Options& o) {
     metadata.worldToCamera = camera.worldToCamera();
     metadata.extra["seed"] = std::to_string(desc.render.seed);
     metadata.extra["scene"] = desc.file.filename().string();
+    metadata.extra["accel"] = o.accel;
     for (const auto& out : desc.film.outputs) {
         writeImage(film, out, output, metadata);
         if (!o.quiet) std::fprintf(stderr, "wrote %s\n", out.string().c_str());
@@ -133,20 +136,29 @@ int runInfo(const Options& o) {
     const World world = buildWorld(desc, BuildOptions{}, &timings);
     const Bounds3 b = world.bounds();
     std::printf("scene      %s\n", desc.file.string().c_str());
-    std::printf("shapes     %zu\n", world.meshes.size());
-    for (size_t i = 0; i < world.meshes.size(); ++i) {
-        const TriangleMesh& m = world.meshes[i].mesh;
-        std::printf("  [%zu] %-24s %10zu triangles %10zu vertices%s%s\n", i,
-                    world.meshes[i].name.c_str(), m.triangleCount(), m.vertexCount(),
-                    m.normals.empty() ? "" : " normals", m.uvs.empty() ? "" : " uvs");
+    std::printf("shapes     %zu\n", world.shapes.size());
+    for (size_t i = 0; i < world.shapes.size(); ++i) {
+        const SceneShape& shape = world.shapes[i];
+        if (shape.user) {
+            const auto* implicit = dynamic_cast<const ImplicitShape*>(shape.user.get());
+            std::printf("  [%zu] %-24s %10u cells     implicit %s\n", i, shape.name.c_str(),
+                        shape.user->primitiveCount(),
+                        implicit ? implicit->surface().describe().c_str() : "");
+            continue;
+        }
+        const TriangleMesh& m = shape.mesh;
+        std::printf("  [%zu] %-24s %10zu triangles %10zu vertices%s%s\n", i, shape.name.c_str(),
+                    m.triangleCount(), m.vertexCount(), m.normals.empty() ? "" : " normals",
+                    m.uvs.empty() ? "" : " uvs");
     }
     std::printf("triangles  %zu\n", world.triangleCount());
+    std::printf("user prims %zu\n", world.userPrimitiveCount());
     std::printf("materials  %zu\n", world.materials.size());
     std::printf("lights     %zu\n", world.lights.size());
     std::printf("bounds     (%g, %g, %g) - (%g, %g, %g)\n", b.min.x, b.min.y, b.min.z, b.max.x,
                 b.max.y, b.max.z);
-    std::printf("memory     meshes %.1f MiB, bvh %.1f MiB\n",
-                double(world.meshMemoryBytes()) / (1 << 20), double(world.accel->memoryBytes()) / (1 << 20));
+    std::printf("memory     shapes %.1f MiB, bvh %.1f MiB\n",
+                double(world.shapeMemoryBytes()) / (1 << 20), double(world.accel->memoryBytes()) / (1 << 20));
     std::printf("camera     %s\n", describeCamera(desc.camera).c_str());
     std::printf("film       %dx%d, %d spp, integrator %s\n", desc.film.width, desc.film.height,
                 desc.render.spp, desc.render.integrator.c_str());

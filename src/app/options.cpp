@@ -72,6 +72,10 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
                        "Camera-ray tracing: auto (16-wide with AVX-512, else 8), 16, 8, or single "
                        "(one ray at a time, for comparison)")
         ->check(CLI::IsMember({"auto", "16", "8", "single"}));
+    render->add_option("--accel", o.accel,
+                       "Accelerator: embree (BVH, default) or naive (tests every primitive for "
+                       "every ray: the reference the BVH is checked and benchmarked against)")
+        ->check(CLI::IsMember({"embree", "naive"}));
     render->add_option("--tile", o.tileSize, "Tile size in pixels (default 32)")
         ->check(CLI::Range(4, 4096));
     render->add_option("--ocio-config", o.color.configFile,

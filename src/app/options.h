@@ -29,6 +29,7 @@ struct Options {
     bool quiet = false;
     PacketMode packets = PacketMode::Auto;
     int tileSize = 32;
+    std::string accel = "embree";  // embree | naive
     ColorSettings color;
 };
 

@@ -10,6 +10,7 @@
 
 #include "strahl/core/error.h"
 #include "strahl/meshio/mesh_file.h"
+#include "strahl/reference/naive_accel.h"
 
 namespace strahl {
 
@@ -32,7 +33,24 @@ std::string shapeSource(const SceneDesc& desc, const ShapeDesc& shape) {
                   shape.file.empty() ? std::string() : " (" + shape.file.string() + ")");
 }
 
+std::shared_ptr<const UserShape> makeImplicitShape(const SceneDesc& desc, const ShapeDesc& shape) {
+    try {
+        return std::make_shared<ImplicitShape>(shape.implicitSurface, shape.transform,
+                                               shape.implicitOptions);
+    } catch (const Error& e) {
+        fail(shapeSource(desc, shape), ": ", e.what());
+    }
+}
+
 }  // namespace
+
+AccelKind accelFromName(const std::string& name) {
+    if (name == "embree") return AccelKind::Embree;
+    if (name == "naive") return AccelKind::Naive;
+    fail("unknown accelerator '", name, "' (choose embree or naive)");
+}
+
+const char* accelName(AccelKind kind) { return kind == AccelKind::Naive ? "naive" : "embree"; }
 
 World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTimings* timings) {
     const auto loadStart = Clock::now();
@@ -52,11 +70,16 @@ World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTiming
     // Load every mesh file in parallel; the first error (in shape order) wins so
     // the message does not depend on thread timing.
     std::vector<LoadedMesh> loaded(desc.shapes.size());
+    std::vector<std::shared_ptr<const UserShape>> userShapes(desc.shapes.size());
     std::vector<std::exception_ptr> errors(desc.shapes.size());
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
     arena.execute([&] {
         tbb::parallel_for(size_t(0), desc.shapes.size(), [&](size_t i) {
             try {
+                if (desc.shapes[i].kind == ShapeKind::Implicit) {
+                    userShapes[i] = makeImplicitShape(desc, desc.shapes[i]);
+                    return;
+                }
                 LoadedMesh mesh = loadShape(desc.shapes[i]);
                 mesh.mesh.transform(desc.shapes[i].transform);
                 mesh.mesh.validate(shapeSource(desc, desc.shapes[i]));
@@ -71,11 +94,12 @@ World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTiming
     for (const std::exception_ptr& e : errors)
         if (e) std::rethrow_exception(e);
 
-    world.meshes.reserve(desc.shapes.size());
+    world.shapes.reserve(desc.shapes.size());
     for (size_t i = 0; i < desc.shapes.size(); ++i) {
         const ShapeDesc& shape = desc.shapes[i];
-        MeshGeometry geometry;
+        SceneShape geometry;
         geometry.name = shape.name;
+        geometry.user = std::move(userShapes[i]);
         geometry.mesh = std::move(loaded[i].mesh);
         geometry.mesh.reservePadding();
         if (!shape.material.empty()) {
@@ -94,7 +118,7 @@ World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTiming
                 world.materials.push_back(Material{shape.name + "/" + m.name, m.diffuse, m.emission});
             }
         }
-        world.meshes.push_back(std::move(geometry));
+        world.shapes.push_back(std::move(geometry));
     }
 
     for (const LightDesc& l : desc.lights) {
@@ -110,12 +134,15 @@ World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTiming
 
     const auto bvhStart = Clock::now();
     if (options.bvhStarted) options.bvhStarted();
-    std::vector<const TriangleMesh*> meshes;
-    for (const MeshGeometry& g : world.meshes) meshes.push_back(&g.mesh);
-    AccelBuildOptions accelOptions;
-    accelOptions.threads = options.threads;
-    accelOptions.progress = options.bvhProgress;
-    world.accel = buildEmbreeAccel(meshes, accelOptions);
+    const std::vector<ShapeRef> refs = world.shapeRefs();
+    if (options.accel == AccelKind::Naive) {
+        world.accel = buildNaiveAccel(refs);
+    } else {
+        AccelBuildOptions accelOptions;
+        accelOptions.threads = options.threads;
+        accelOptions.progress = options.bvhProgress;
+        world.accel = buildEmbreeAccel(refs, accelOptions);
+    }
     if (timings) timings->bvhSeconds = secondsSince(bvhStart);
     return world;
 }

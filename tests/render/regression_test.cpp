@@ -1,5 +1,5 @@
 // Image regression: every scene in scenes/regression/ is rendered and compared
-// with its stored reference in tests/reference/ (float EXR). The renders are
+// with its stored reference in tests/golden/ (float EXR). The renders are
 // deterministic, so the tolerance only absorbs differences of floating-point
 // code generation between machines/compilers, not noise.
 // STRAHL_UPDATE_REFERENCES=1 rewrites the references instead (look at them!).
@@ -31,7 +31,7 @@ class Regression : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(Regression, MatchesReference) {
     const fs::path scene = test::sourceDir() / "scenes/regression" / (GetParam() + ".json");
-    const fs::path reference = test::sourceDir() / "tests/reference" / (GetParam() + ".exr");
+    const fs::path reference = test::sourceDir() / "tests/golden" / (GetParam() + ".exr");
     const SceneDesc desc = parseSceneFile(scene);
     const World world = buildWorld(desc, BuildOptions{});
     const Camera camera = buildCamera(desc.camera, desc.film.width, desc.film.height);

@@ -14,20 +14,20 @@ namespace {
 World floorWorld(float rho, bool occluder) {
     World world;
     world.materials.push_back(Material{"floor", Color(rho), Color(0.0f)});
-    MeshGeometry floor;
+    SceneShape floor;
     floor.mesh.positions = {{-10, 0, -10}, {10, 0, -10}, {10, 0, 10}, {-10, 0, 10}};
     floor.mesh.indices = {0, 2, 1, 0, 3, 2};
     floor.materialOfSlot = {0};
-    world.meshes.push_back(std::move(floor));
+    world.shapes.push_back(std::move(floor));
     if (occluder) {
-        MeshGeometry blocker;
+        SceneShape blocker;
         blocker.mesh.positions = {{-0.5f, 1, -0.5f}, {0.5f, 1, -0.5f}, {0.5f, 1, 0.5f}, {-0.5f, 1, 0.5f}};
         blocker.mesh.indices = {0, 1, 2, 0, 2, 3};
         blocker.materialOfSlot = {0};
-        world.meshes.push_back(std::move(blocker));
+        world.shapes.push_back(std::move(blocker));
     }
     std::vector<const TriangleMesh*> meshes;
-    for (MeshGeometry& g : world.meshes) {
+    for (SceneShape& g : world.shapes) {
         g.mesh.reservePadding();
         meshes.push_back(&g.mesh);
     }

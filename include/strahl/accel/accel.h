@@ -3,8 +3,9 @@
 // BVH here, the naive loop over all primitives in the reference module. Callers
 // never see Embree types: packets are strahl's own SoA layout (core/packet.h).
 //
-// Geometry IDs are stable and computable: the i-th mesh handed to a builder has
-// geomID i, and primID is the triangle index within that mesh.
+// Geometry IDs are stable and computable: the i-th shape handed to a builder
+// has geomID i, and primID is the triangle index within a mesh or the primitive
+// index within a user shape.
 
 #include <cstddef>
 #include <functional>
@@ -15,6 +16,7 @@
 #include "strahl/core/packet.h"
 #include "strahl/core/ray.h"
 #include "strahl/geometry/triangle_mesh.h"
+#include "strahl/geometry/user_shape.h"
 
 namespace strahl {
 
@@ -59,9 +61,13 @@ struct AccelBuildOptions {
     std::function<void(double)> progress;
 };
 
-// Builds an Embree BVH over the meshes (which must outlive the Accel; their
-// vertex buffers are shared with Embree, not copied, when reservePadding() was
-// called). Throws strahl::Error if Embree reports an error.
+// Builds an Embree BVH over the shapes (which must outlive the Accel): meshes as
+// Embree triangles — their vertex buffers shared with Embree, not copied, when
+// reservePadding() was called — and user shapes as Embree user geometry. Throws
+// strahl::Error if Embree reports an error.
+std::unique_ptr<Accel> buildEmbreeAccel(std::span<const ShapeRef> shapes,
+                                        const AccelBuildOptions& options);
+// The same for a list of meshes only.
 std::unique_ptr<Accel> buildEmbreeAccel(std::span<const TriangleMesh* const> meshes,
                                         const AccelBuildOptions& options);
 

@@ -8,6 +8,7 @@
 
 #include "strahl/core/bounds.h"
 #include "strahl/core/math.h"
+#include "strahl/geometry/surface_interaction.h"
 
 namespace strahl {
 
@@ -34,16 +35,6 @@ struct TriangleMesh {
     // needs readable memory behind the last vertex: reserve one spare element.
     void reservePadding() { positions.reserve(positions.size() + 1); }
     bool isPadded() const { return positions.capacity() > positions.size(); }
-};
-
-// Everything shading needs about a hit point, computed once for the closest hit.
-struct SurfaceInteraction {
-    Vec3 p{0.0f};       // hit point rebuilt from barycentrics (not o + t*d)
-    Vec3 pError{0.0f};  // conservative per-axis bound on the error of p
-    Vec3 Ng{0.0f};      // unit geometric normal (winding order)
-    Vec3 Ns{0.0f};      // unit shading normal, same hemisphere as Ng
-    Vec2 uv{0.0f};
-    uint32_t materialSlot = 0;  // faceMaterials entry, 0 if the mesh has none
 };
 
 // Interaction on triangle `prim` at Embree barycentrics (u, v).

@@ -20,7 +20,7 @@ public:
     const Hit& hit() const { return hit_; }
 
     const SurfaceInteraction& interaction() const {
-        if (!si_) si_ = world_.interaction(hit_);
+        if (!si_) si_ = world_.interaction(ray_, hit_);
         return *si_;
     }
     const Material& material() const { return world_.material(hit_, interaction()); }
@@ -28,7 +28,8 @@ public:
     // Unit shading normal. For meshes without vertex normals it is the
     // accelerator's geometric normal, normalised, with no vertex fetch.
     Vec3 shadingNormal() const {
-        if (!si_ && world_.meshes[hit_.geomID].mesh.normals.empty()) {
+        const SceneShape& shape = world_.shapes[hit_.geomID];
+        if (!si_ && shape.isMesh() && shape.mesh.normals.empty()) {
             const float len = glm::length(hit_.Ng);
             if (len > 0.0f) return hit_.Ng / len;
         }

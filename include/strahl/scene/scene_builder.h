@@ -1,7 +1,8 @@
 #pragma once
 // From SceneDesc to what the renderer reads: meshes loaded (in parallel),
-// transformed to world space, validated and padded for Embree; materials
-// resolved to one table; lights; the camera; the Embree BVH.
+// transformed to world space, validated and padded for Embree; implicit
+// surfaces placed and cut into cells; materials resolved to one table; lights;
+// the camera; the accelerator (Embree's BVH, or the naive reference loop).
 
 #include <functional>
 
@@ -11,8 +12,11 @@
 
 namespace strahl {
 
+enum class AccelKind { Embree, Naive };
+
 struct BuildOptions {
     int threads = 0;  // 0: all hardware threads
+    AccelKind accel = AccelKind::Embree;
     // Called when the BVH build starts and with its progress fraction.
     std::function<void()> bvhStarted;
     std::function<void(double)> bvhProgress;
@@ -20,11 +24,15 @@ struct BuildOptions {
 
 struct BuildTimings {
     double loadSeconds = 0.0;  // reading and preparing meshes
-    double bvhSeconds = 0.0;   // building the acceleration structure
+    double bvhSeconds = 0.0;   // building the acceleration structure (0 for naive)
 };
 
 // Throws strahl::Error naming the shape (file or JSON pointer) on any failure.
 World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTimings* timings = nullptr);
+
+// "embree" or "naive"; throws strahl::Error listing the choices otherwise.
+AccelKind accelFromName(const std::string& name);
+const char* accelName(AccelKind kind);
 
 // The camera for an image of width x height pixels.
 Camera buildCamera(const CameraDesc& desc, int width, int height);

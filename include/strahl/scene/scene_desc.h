@@ -13,6 +13,7 @@
 #include "strahl/camera/camera.h"
 #include "strahl/core/math.h"
 #include "strahl/film/film.h"
+#include "strahl/geometry/implicit_shape.h"
 #include "strahl/geometry/triangle_mesh.h"
 
 namespace strahl {
@@ -55,10 +56,15 @@ struct MaterialDesc {
     std::string where;
 };
 
+enum class ShapeKind { Mesh, Implicit };
+
 struct ShapeDesc {
+    ShapeKind kind = ShapeKind::Mesh;
     std::string name;                // optional label, defaults to the JSON pointer
     std::filesystem::path file;      // mesh file (resolved), empty for inline meshes
     TriangleMesh inlineMesh;         // used when file is empty
+    ImplicitSurfacePtr implicitSurface;    // kind == Implicit: f, compiled at parse time
+    ImplicitShapeOptions implicitOptions;  // its box, cells and tolerance
     Mat4 transform{1.0f};            // object to world
     std::string material;            // empty: the file's own materials, else "default"
     std::string where;               // JSON pointer, e.g. "/shapes/0"

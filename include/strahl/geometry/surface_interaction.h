@@ -1,0 +1,21 @@
+#pragma once
+// SurfaceInteraction: everything shading needs about a hit point, computed once
+// for the closest hit (the second phase of two-phase intersection) by the shape
+// that was hit.
+
+#include <cstdint>
+
+#include "strahl/core/math.h"
+
+namespace strahl {
+
+struct SurfaceInteraction {
+    Vec3 p{0.0f};       // hit point (triangles: rebuilt from barycentrics, not o + t*d)
+    Vec3 pError{0.0f};  // conservative per-axis bound on the error of p
+    Vec3 Ng{0.0f};      // unit geometric normal (triangles: winding order; implicit: +grad f)
+    Vec3 Ns{0.0f};      // unit shading normal, same hemisphere as Ng
+    Vec2 uv{0.0f};
+    uint32_t materialSlot = 0;  // faceMaterials entry, 0 if the mesh has none
+};
+
+}  // namespace strahl

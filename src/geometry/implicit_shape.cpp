@@ -1,0 +1,216 @@
+#include "strahl/geometry/implicit_shape.h"
+
+#include <cmath>
+#include <utility>
+
+#include <glm/matrix.hpp>
+
+#include "strahl/core/error.h"
+#include "strahl/geometry/implicit_root_finder.h"
+
+namespace strahl {
+
+namespace {
+
+// Finer grids cull more empty space but cost Embree primitives and build time;
+// 32³ = 32768 candidate cells keeps the build in milliseconds while a typical
+// surface keeps only a few thousand of them.
+constexpr int kDefaultCells = 32;
+constexpr int kMaxCells = 256;
+
+Vec3 toFloatDown(const DVec3& v) {
+    auto down = [](double x) {
+        const float f = static_cast<float>(x);
+        return static_cast<double>(f) > x ? std::nextafter(f, -kInfinity) : f;
+    };
+    return Vec3(down(v.x), down(v.y), down(v.z));
+}
+Vec3 toFloatUp(const DVec3& v) {
+    auto up = [](double x) {
+        const float f = static_cast<float>(x);
+        return static_cast<double>(f) < x ? std::nextafter(f, kInfinity) : f;
+    };
+    return Vec3(up(v.x), up(v.y), up(v.z));
+}
+
+bool isFiniteD(const DVec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// Parameter range [t0, t1] of the ray o + t·d inside the box (slab method).
+// An axis the ray runs parallel to constrains nothing if o lies in its slab,
+// and rejects the ray otherwise (this avoids 0·inf = NaN).
+bool clipToBox(const DVec3& o, const DVec3& d, const DVec3& lo, const DVec3& hi, double& t0,
+               double& t1) {
+    for (int axis = 0; axis < 3; ++axis) {
+        if (d[axis] == 0.0) {
+            if (o[axis] < lo[axis] || o[axis] > hi[axis]) return false;
+            continue;
+        }
+        const double inv = 1.0 / d[axis];
+        double a = (lo[axis] - o[axis]) * inv, b = (hi[axis] - o[axis]) * inv;
+        if (a > b) std::swap(a, b);
+        t0 = std::max(t0, a);
+        t1 = std::min(t1, b);
+    }
+    return t0 <= t1;
+}
+
+}  // namespace
+
+ImplicitShape::ImplicitShape(ImplicitSurfacePtr surface, const Mat4& objectToWorld,
+                             const ImplicitShapeOptions& options)
+    : surface_(std::move(surface)) {
+    const glm::dmat4 toWorld(objectToWorld);
+    const double det = glm::determinant(glm::dmat3(toWorld));
+    if (!std::isfinite(det) || det == 0.0)
+        fail("the transform is singular or not finite");
+    toObject_ = glm::inverse(toWorld);
+    toWorldLinear_ = glm::dmat3(toWorld);
+    normalToWorld_ = glm::transpose(glm::dmat3(toObject_));
+
+    // Domain: the surface's own bounds clipped to the box.
+    std::optional<Bounds3> domain = surface_->bounds();
+    if (options.box) {
+        if (domain) {
+            domain->min = glm::max(domain->min, options.box->min);
+            domain->max = glm::min(domain->max, options.box->max);
+        } else {
+            domain = options.box;
+        }
+    }
+    if (!domain)
+        fail("the surface ", surface_->describe(), " is unbounded: give the shape a \"box\"");
+    if (!isFinite(domain->min) || !isFinite(domain->max))
+        fail("the surface's domain is not finite");
+    if (domain->empty())
+        fail("the surface ", surface_->describe(),
+             " has no point inside the shape's box (they do not overlap)");
+    domainMin_ = DVec3(domain->min);
+    domainMax_ = DVec3(domain->max);
+    const DVec3 extent = domainMax_ - domainMin_;
+    if (!(options.relativeTolerance > 0.0 && options.relativeTolerance < 1.0))
+        fail("the tolerance must lie in (0, 1)");
+    tolerance_ = options.relativeTolerance * std::max(glm::length(extent), 1e-30);
+
+    double scratch[4];
+    closedForm_ = surface_->closedFormRoots(DVec3(0.0), DVec3(0.0, 0.0, 1.0), scratch) >= 0;
+    const int n = options.cellsPerAxis > 0 ? options.cellsPerAxis : (closedForm_ ? 1 : kDefaultCells);
+    if (n > kMaxCells) fail("at most ", kMaxCells, " cells per axis (got ", n, ")");
+
+    // Keep the cells the interval range cannot clear of the surface. Each cell
+    // is grown by the tolerance, so roots on a shared face belong to both
+    // neighbours and float rounding of the clip never opens a crack.
+    const DVec3 cellSize = extent / static_cast<double>(n);
+    for (int k = 0; k < n; ++k)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                Cell cell;
+                cell.min = domainMin_ + DVec3(i, j, k) * cellSize - tolerance_;
+                cell.max = domainMin_ + DVec3(i + 1, j + 1, k + 1) * cellSize + tolerance_;
+                const num::Interval range = surface_->range(IntervalBox{
+                    num::Interval(cell.min.x, cell.max.x), num::Interval(cell.min.y, cell.max.y),
+                    num::Interval(cell.min.z, cell.max.z)});
+                // A NaN range (0·inf inside f) cannot be cleared either.
+                if (!(range.lo > 0.0 || range.hi < 0.0)) cells_.push_back(cell);
+            }
+    if (cells_.empty())
+        fail("the surface ", surface_->describe(), " has no point inside its domain");
+
+    // World boxes: the eight transformed corners, rounded outwards to float.
+    worldBounds_.reserve(cells_.size());
+    for (const Cell& c : cells_) {
+        DVec3 lo(num::kInf), hi(-num::kInf);
+        for (int corner = 0; corner < 8; ++corner) {
+            const DVec3 p((corner & 1) ? c.max.x : c.min.x, (corner & 2) ? c.max.y : c.min.y,
+                          (corner & 4) ? c.max.z : c.min.z);
+            const DVec3 w = DVec3(toWorld * glm::dvec4(p, 1.0));
+            lo = glm::min(lo, w);
+            hi = glm::max(hi, w);
+        }
+        if (!isFiniteD(lo) || !isFiniteD(hi)) fail("the transformed surface is not finite");
+        worldBounds_.push_back(Bounds3{toFloatDown(lo), toFloatUp(hi)});
+    }
+}
+
+bool ImplicitShape::intersect(const Ray& ray, uint32_t prim, Hit& hit) const noexcept {
+    const Cell& cell = cells_[prim];
+    const DVec3 o = DVec3(toObject_ * glm::dvec4(DVec3(ray.origin), 1.0));
+    const DVec3 d = glm::dmat3(toObject_) * DVec3(ray.dir);
+    double t0 = ray.tnear, t1 = ray.tfar;
+    if (!clipToBox(o, d, cell.min, cell.max, t0, t1)) return false;
+
+    const double tnear = ray.tnear, tfar = ray.tfar;
+    std::optional<ImplicitRoot> root;
+    if (closedForm_) {
+        double roots[4];
+        const int count = surface_->closedFormRoots(o, d, roots);
+        for (int i = 0; i < count && !root; ++i) {
+            if (!(roots[i] >= t0 && roots[i] <= t1)) continue;
+            if (!(static_cast<float>(roots[i]) > ray.tnear && static_cast<float>(roots[i]) < ray.tfar))
+                continue;
+            // The quadratic's rounding error, estimated by one Newton step.
+            const double t = roots[i];
+            const DVec3 g = surface_->gradient(o + t * d);
+            const double slope = glm::dot(g, d);
+            const double step = slope != 0.0 ? surface_->value(o + t * d) / slope : 0.0;
+            root = ImplicitRoot{t, 2.0 * std::abs(step) + 1e-12 * std::abs(t)};
+        }
+    } else {
+        const double tolT = tolerance_ / glm::length(d);
+        double from = std::max(t0, tnear);
+        // A root whose float t rounds onto tnear or tfar is outside the open
+        // interval; search on past it (at most a few times: roots are isolated).
+        for (int attempt = 0; attempt < 4 && !root; ++attempt) {
+            root = findFirstRoot(*surface_, o, d, from, std::min(t1, tfar), tolT);
+            if (!root) break;
+            const float t = static_cast<float>(root->t);
+            if (t > ray.tnear && t < ray.tfar) break;
+            if (t >= ray.tfar) return false;
+            from = root->t + std::max(root->tError, tolT);
+            root.reset();
+        }
+    }
+    if (!root) return false;
+
+    const DVec3 pObject = o + root->t * d;
+    DVec3 gradient = surface_->gradient(pObject);
+    if (!isFiniteD(gradient) || gradient == DVec3(0.0)) gradient = -d;  // face the ray
+    Vec3 Ng = Vec3(normalToWorld_ * gradient);
+    if (!isFinite(Ng) || Ng == Vec3(0.0f)) Ng = -ray.dir;
+    hit.t = static_cast<float>(root->t);
+    hit.u = static_cast<float>(root->tError);
+    hit.v = 0.0f;
+    hit.Ng = Ng;
+    return true;
+}
+
+SurfaceInteraction ImplicitShape::interaction(const Ray& ray, const Hit& hit) const {
+    SurfaceInteraction si;
+    si.p = ray.at(hit.t);
+    // Error of p: the float evaluation of o + t·d (gamma(3) per component), the
+    // rounding of t to float (half an ulp, i.e. gamma(1)·|t|) and the root's own
+    // uncertainty tError = hit.u, each scaled by |d|.
+    const Vec3 absTd = glm::abs(hit.t * ray.dir);
+    si.pError = gammaBound(3) * (glm::abs(ray.origin) + absTd) +
+                glm::abs(ray.dir) * (hit.u + gammaBound(1) * std::abs(hit.t));
+    const float len = glm::length(hit.Ng);
+    si.Ng = len > 0.0f ? hit.Ng / len : -glm::normalize(ray.dir);
+    si.Ns = si.Ng;
+    // Spherical coordinates of the object-space point, a usable default uv.
+    const DVec3 o = DVec3(toObject_ * glm::dvec4(DVec3(si.p), 1.0));
+    const DVec3 c = 0.5 * (domainMin_ + domainMax_);
+    const DVec3 r = o - c;
+    si.uv = Vec2(static_cast<float>(0.5 + std::atan2(r.y, r.x) / (2.0 * num::kPiD)),
+                 static_cast<float>(std::acos(std::clamp(r.z / std::max(glm::length(r), 1e-300),
+                                                         -1.0, 1.0)) / num::kPiD));
+    si.materialSlot = 0;
+    return si;
+}
+
+size_t ImplicitShape::memoryBytes() const {
+    return sizeof(*this) + cells_.capacity() * sizeof(Cell) +
+           worldBounds_.capacity() * sizeof(Bounds3);
+}
+
+}  // namespace strahl
