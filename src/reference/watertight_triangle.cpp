@@ -55,6 +55,7 @@
 
 #include "strahl/reference/watertight_triangle.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace strahl {
@@ -95,6 +96,25 @@ float edgeFunctionExact(const RaySpaceVertex& p, const RaySpaceVertex& q) {
                               static_cast<double>(p.y) * static_cast<double>(q.x));
 }
 
+// A bound on the rounding error of t near 0 (pbrt-v4, Triangle::Intersect,
+// "ensure that computed triangle t is conservatively greater than zero"): the
+// errors of the ray-space z's, of the edge functions and of their blend, each
+// bounded with gamma(n). A t below it may really be ≤ 0 — typically a shadow
+// ray whose origin lies exactly in the plane of the triangle it leaves, which
+// a float t of +1e-9 would otherwise report as its own occluder.
+float conservativeTZero(const RaySpaceVertex& a, const RaySpaceVertex& b, const RaySpaceVertex& c,
+                        float e0, float e1, float e2, float det) {
+    const float maxZ = std::max({std::abs(a.z), std::abs(b.z), std::abs(c.z)});
+    const float maxX = std::max({std::abs(a.x), std::abs(b.x), std::abs(c.x)});
+    const float maxY = std::max({std::abs(a.y), std::abs(b.y), std::abs(c.y)});
+    const float deltaZ = gammaBound(3) * maxZ;
+    const float deltaX = gammaBound(5) * (maxX + maxZ);
+    const float deltaY = gammaBound(5) * (maxY + maxZ);
+    const float deltaE = 2.0f * (gammaBound(2) * maxX * maxY + deltaY * maxX + deltaX * maxY);
+    const float maxE = std::max({std::abs(e0), std::abs(e1), std::abs(e2)});
+    return 3.0f * (gammaBound(3) * maxE * maxZ + deltaE * maxZ + deltaZ * maxE) / std::abs(det);
+}
+
 }  // namespace
 
 bool intersectTriangleWatertight(const WatertightRay& ray, float tnear, float tfar, const Vec3& p0,
@@ -128,6 +148,7 @@ bool intersectTriangleWatertight(const WatertightRay& ray, float tnear, float tf
     const float scaledT = edgeU * a.z + edgeV * b.z + edgeW * c.z;
     const float t = scaledT / det;
     if (!(t > tnear && t < tfar)) return false;
+    if (t <= conservativeTZero(a, b, c, edgeU, edgeV, edgeW, det)) return false;
 
     hit.t = t;
     hit.u = edgeV / det;
