@@ -15,20 +15,17 @@
 //    need (TriangleMesh::reservePadding); otherwise they are copied once into an
 //    Embree-owned buffer — correct, but it costs memory, so the scene builder
 //    always pads.
-//  - strahl's RayHitPacket<N> is handed to rtcIntersectN by reinterpret_cast;
-//    the static_asserts below pin every field offset to RTCRayHitN.
-//  - No exception ever crosses an Embree call: errors are recorded by the device
-//    callback and thrown after the call returns (EmbreeDevice::check).
+//  - The device, the scene, the ray queries (packets by reinterpret_cast of
+//    RayHitPacket<N>, its layout pinned to RTCRayHitN) and the error handling
+//    are EmbreeSceneAccel's (embree_scene.h), shared with the sphere baseline.
 
 #include <embree3/rtcore.h>
 
-#include <algorithm>
-#include <atomic>
 #include <cstddef>
 #include <cstring>
 #include <vector>
 
-#include "embree_device.h"
+#include "embree_scene.h"
 #include "strahl/accel/accel.h"
 #include "strahl/core/error.h"
 
@@ -36,56 +33,7 @@ namespace strahl {
 
 namespace {
 
-#define STRAHL_SAME_OFFSET(N, ours, theirs)                                          \
-    static_assert(offsetof(RayHitPacket<N>, ours) == offsetof(RTCRayHit##N, theirs), \
-                  "RayHitPacket<" #N ">::" #ours " does not match RTCRayHit" #N)
-#define STRAHL_CHECK_PACKET_LAYOUT(N)                                                        \
-    static_assert(sizeof(RayHitPacket<N>) == sizeof(RTCRayHit##N));                          \
-    static_assert(alignof(RayHitPacket<N>) >= alignof(RTCRayHit##N));                        \
-    STRAHL_SAME_OFFSET(N, org_x, ray.org_x); STRAHL_SAME_OFFSET(N, org_y, ray.org_y);        \
-    STRAHL_SAME_OFFSET(N, org_z, ray.org_z); STRAHL_SAME_OFFSET(N, tnear, ray.tnear);        \
-    STRAHL_SAME_OFFSET(N, dir_x, ray.dir_x); STRAHL_SAME_OFFSET(N, dir_y, ray.dir_y);        \
-    STRAHL_SAME_OFFSET(N, dir_z, ray.dir_z); STRAHL_SAME_OFFSET(N, time, ray.time);          \
-    STRAHL_SAME_OFFSET(N, tfar, ray.tfar); STRAHL_SAME_OFFSET(N, mask, ray.mask);            \
-    STRAHL_SAME_OFFSET(N, id, ray.id); STRAHL_SAME_OFFSET(N, flags, ray.flags);              \
-    STRAHL_SAME_OFFSET(N, Ng_x, hit.Ng_x); STRAHL_SAME_OFFSET(N, Ng_y, hit.Ng_y);            \
-    STRAHL_SAME_OFFSET(N, Ng_z, hit.Ng_z); STRAHL_SAME_OFFSET(N, u, hit.u);                  \
-    STRAHL_SAME_OFFSET(N, v, hit.v); STRAHL_SAME_OFFSET(N, primID, hit.primID);              \
-    STRAHL_SAME_OFFSET(N, geomID, hit.geomID); STRAHL_SAME_OFFSET(N, instID, hit.instID)
-
-static_assert(RTC_MAX_INSTANCE_LEVEL_COUNT == 1, "packets carry one instance level");
-STRAHL_CHECK_PACKET_LAYOUT(8);
-STRAHL_CHECK_PACKET_LAYOUT(16);
 static_assert(sizeof(Vec3) == 3 * sizeof(float), "vertex buffers are shared as RTC_FORMAT_FLOAT3");
-static_assert(kInvalidId == RTC_INVALID_GEOMETRY_ID);
-
-RTCIntersectContext makeContext(RayCoherence coherence) {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    context.flags = coherence == RayCoherence::Coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT
-                                                        : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-    return context;
-}
-
-RTCRayHit toEmbree(const Ray& ray) {
-    RTCRayHit rh;
-    rh.ray.org_x = ray.origin.x;
-    rh.ray.org_y = ray.origin.y;
-    rh.ray.org_z = ray.origin.z;
-    rh.ray.dir_x = ray.dir.x;
-    rh.ray.dir_y = ray.dir.y;
-    rh.ray.dir_z = ray.dir.z;
-    rh.ray.tnear = ray.tnear;
-    rh.ray.tfar = ray.tfar;
-    rh.ray.time = 0.0f;
-    rh.ray.mask = 0xFFFFFFFFu;
-    rh.ray.id = 0;
-    rh.ray.flags = 0;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    return rh;
-}
 
 // ---- the generic user-geometry adapter --------------------------------------
 
@@ -147,73 +95,22 @@ void userOccluded(const RTCOccludedFunctionNArguments* args) {
 
 // ---- the accelerator -----------------------------------------------------------
 
-class EmbreeAccel final : public Accel {
+class EmbreeAccel final : public EmbreeSceneAccel {
 public:
     EmbreeAccel(std::span<const ShapeRef> shapes, const AccelBuildOptions& options)
-        : device_(options.threads), progress_(options.progress) {
-        scene_ = rtcNewScene(device_.handle());
-        device_.check("creating the scene");
-        rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
-        if (progress_) rtcSetSceneProgressMonitorFunction(scene_, &EmbreeAccel::onProgress, this);
+        : EmbreeSceneAccel(options) {
         for (size_t i = 0; i < shapes.size(); ++i) {
             if (shapes[i].mesh)
                 attachMesh(*shapes[i].mesh, static_cast<unsigned>(i));
             else
                 attachUserShape(*shapes[i].user, static_cast<unsigned>(i));
-            bounds_.expand(shapes[i].bounds());
         }
-        rtcCommitScene(scene_);
-        device_.check("building the BVH");
+        commit();
     }
-
-    ~EmbreeAccel() override {
-        if (scene_) rtcReleaseScene(scene_);
-    }
-
-    Hit intersect(const Ray& ray) const override {
-        RTCIntersectContext context = makeContext(RayCoherence::Incoherent);
-        RTCRayHit rh = toEmbree(ray);
-        rtcIntersect1(scene_, &context, &rh);
-        Hit hit;
-        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
-        hit.t = rh.ray.tfar;
-        hit.u = rh.hit.u;
-        hit.v = rh.hit.v;
-        hit.Ng = Vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
-        hit.geomID = rh.hit.geomID;
-        hit.primID = rh.hit.primID;
-        return hit;
-    }
-
-    bool occluded(const Ray& ray) const override {
-        RTCIntersectContext context = makeContext(RayCoherence::Incoherent);
-        RTCRay r = toEmbree(ray).ray;
-        rtcOccluded1(scene_, &context, &r);
-        return r.tfar < 0.0f;  // Embree sets tfar = -inf on a hit
-    }
-
-    void intersect8(const int* valid, RayHitPacket8& packet, RayCoherence c) const override {
-        RTCIntersectContext context = makeContext(c);
-        rtcIntersect8(valid, scene_, &context, reinterpret_cast<RTCRayHit8*>(&packet));
-    }
-
-    void intersect16(const int* valid, RayHitPacket16& packet, RayCoherence c) const override {
-        RTCIntersectContext context = makeContext(c);
-        rtcIntersect16(valid, scene_, &context, reinterpret_cast<RTCRayHit16*>(&packet));
-    }
-
-    int nativePacketWidth() const override {
-        if (device_.supportsNative16()) return 16;
-        if (device_.supportsNative8()) return 8;
-        return 1;
-    }
-
-    Bounds3 bounds() const override { return bounds_; }
-    size_t memoryBytes() const override { return device_.bytesInUse(); }
 
 private:
     void attachMesh(const TriangleMesh& mesh, unsigned geomID) {
-        RTCGeometry geom = rtcNewGeometry(device_.handle(), RTC_GEOMETRY_TYPE_TRIANGLE);
+        RTCGeometry geom = rtcNewGeometry(device(), RTC_GEOMETRY_TYPE_TRIANGLE);
         const size_t nv = mesh.vertexCount(), nt = mesh.triangleCount();
         if (mesh.isPadded()) {
             rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
@@ -225,10 +122,7 @@ private:
         }
         rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                    mesh.indices.data(), 0, 3 * sizeof(uint32_t), nt);
-        rtcCommitGeometry(geom);
-        rtcAttachGeometryByID(scene_, geom, geomID);
-        rtcReleaseGeometry(geom);
-        device_.check("adding a triangle mesh");
+        attach(geom, geomID, mesh.bounds(), "adding a triangle mesh");
     }
 
     void attachUserShape(const UserShape& shape, unsigned geomID) {
@@ -238,28 +132,14 @@ private:
             if (b.empty() || !isFinite(b.min) || !isFinite(b.max))
                 fail("shape ", geomID, ": primitive ", prim, " has no finite bounds");
         }
-        RTCGeometry geom = rtcNewGeometry(device_.handle(), RTC_GEOMETRY_TYPE_USER);
+        RTCGeometry geom = rtcNewGeometry(device(), RTC_GEOMETRY_TYPE_USER);
         rtcSetGeometryUserPrimitiveCount(geom, count);
         rtcSetGeometryUserData(geom, const_cast<UserShape*>(&shape));
         rtcSetGeometryBoundsFunction(geom, &userBounds, nullptr);
         rtcSetGeometryIntersectFunction(geom, &userIntersect);
         rtcSetGeometryOccludedFunction(geom, &userOccluded);
-        rtcCommitGeometry(geom);
-        rtcAttachGeometryByID(scene_, geom, geomID);
-        rtcReleaseGeometry(geom);
-        device_.check("adding a user shape");
+        attach(geom, geomID, shape.bounds(), "adding a user shape");
     }
-
-    static bool onProgress(void* self, double fraction) {
-        auto* accel = static_cast<EmbreeAccel*>(self);
-        accel->progress_(std::clamp(fraction, 0.0, 1.0));
-        return true;  // never cancel
-    }
-
-    EmbreeDevice device_;
-    std::function<void(double)> progress_;
-    RTCScene scene_ = nullptr;
-    Bounds3 bounds_;
 };
 
 }  // namespace

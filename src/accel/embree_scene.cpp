@@ -1,0 +1,139 @@
+// EmbreeSceneAccel: device, scene and ray queries shared by every Embree-backed
+// Accel (see embree_scene.h). The static_asserts below are what makes the
+// zero-copy packet queries safe.
+
+#include "embree_scene.h"
+
+#include <algorithm>
+#include <cstddef>
+
+#include "strahl/core/error.h"
+
+namespace strahl {
+
+namespace {
+
+#define STRAHL_SAME_OFFSET(N, ours, theirs)                                          \
+    static_assert(offsetof(RayHitPacket<N>, ours) == offsetof(RTCRayHit##N, theirs), \
+                  "RayHitPacket<" #N ">::" #ours " does not match RTCRayHit" #N)
+#define STRAHL_CHECK_PACKET_LAYOUT(N)                                                        \
+    static_assert(sizeof(RayHitPacket<N>) == sizeof(RTCRayHit##N));                          \
+    static_assert(alignof(RayHitPacket<N>) >= alignof(RTCRayHit##N));                        \
+    STRAHL_SAME_OFFSET(N, org_x, ray.org_x); STRAHL_SAME_OFFSET(N, org_y, ray.org_y);        \
+    STRAHL_SAME_OFFSET(N, org_z, ray.org_z); STRAHL_SAME_OFFSET(N, tnear, ray.tnear);        \
+    STRAHL_SAME_OFFSET(N, dir_x, ray.dir_x); STRAHL_SAME_OFFSET(N, dir_y, ray.dir_y);        \
+    STRAHL_SAME_OFFSET(N, dir_z, ray.dir_z); STRAHL_SAME_OFFSET(N, time, ray.time);          \
+    STRAHL_SAME_OFFSET(N, tfar, ray.tfar); STRAHL_SAME_OFFSET(N, mask, ray.mask);            \
+    STRAHL_SAME_OFFSET(N, id, ray.id); STRAHL_SAME_OFFSET(N, flags, ray.flags);              \
+    STRAHL_SAME_OFFSET(N, Ng_x, hit.Ng_x); STRAHL_SAME_OFFSET(N, Ng_y, hit.Ng_y);            \
+    STRAHL_SAME_OFFSET(N, Ng_z, hit.Ng_z); STRAHL_SAME_OFFSET(N, u, hit.u);                  \
+    STRAHL_SAME_OFFSET(N, v, hit.v); STRAHL_SAME_OFFSET(N, primID, hit.primID);              \
+    STRAHL_SAME_OFFSET(N, geomID, hit.geomID); STRAHL_SAME_OFFSET(N, instID, hit.instID)
+
+static_assert(RTC_MAX_INSTANCE_LEVEL_COUNT == 1, "packets carry one instance level");
+STRAHL_CHECK_PACKET_LAYOUT(8);
+STRAHL_CHECK_PACKET_LAYOUT(16);
+static_assert(kInvalidId == RTC_INVALID_GEOMETRY_ID);
+
+RTCIntersectContext makeContext(RayCoherence coherence) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = coherence == RayCoherence::Coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT
+                                                        : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    return context;
+}
+
+RTCRayHit toEmbree(const Ray& ray) {
+    RTCRayHit rh;
+    rh.ray.org_x = ray.origin.x;
+    rh.ray.org_y = ray.origin.y;
+    rh.ray.org_z = ray.origin.z;
+    rh.ray.dir_x = ray.dir.x;
+    rh.ray.dir_y = ray.dir.y;
+    rh.ray.dir_z = ray.dir.z;
+    rh.ray.tnear = ray.tnear;
+    rh.ray.tfar = ray.tfar;
+    rh.ray.time = 0.0f;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    return rh;
+}
+
+}  // namespace
+
+EmbreeSceneAccel::EmbreeSceneAccel(const AccelBuildOptions& options)
+    : device_(options.threads), progress_(options.progress) {
+    scene_ = rtcNewScene(device_.handle());
+    device_.check("creating the scene");
+    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
+    if (progress_) rtcSetSceneProgressMonitorFunction(scene_, &EmbreeSceneAccel::onProgress, this);
+}
+
+EmbreeSceneAccel::~EmbreeSceneAccel() {
+    if (scene_) rtcReleaseScene(scene_);
+}
+
+void EmbreeSceneAccel::attach(RTCGeometry geometry, unsigned geomID, const Bounds3& bounds,
+                              const char* what) {
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometryByID(scene_, geometry, geomID);
+    rtcReleaseGeometry(geometry);
+    device_.check(what);
+    bounds_.expand(bounds);
+}
+
+void EmbreeSceneAccel::commit() {
+    rtcCommitScene(scene_);
+    device_.check("building the BVH");
+}
+
+Hit EmbreeSceneAccel::intersect(const Ray& ray) const {
+    RTCIntersectContext context = makeContext(RayCoherence::Incoherent);
+    RTCRayHit rh = toEmbree(ray);
+    rtcIntersect1(scene_, &context, &rh);
+    Hit hit;
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
+    hit.t = rh.ray.tfar;
+    hit.u = rh.hit.u;
+    hit.v = rh.hit.v;
+    hit.Ng = Vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+    hit.geomID = rh.hit.geomID;
+    hit.primID = rh.hit.primID;
+    return hit;
+}
+
+bool EmbreeSceneAccel::occluded(const Ray& ray) const {
+    RTCIntersectContext context = makeContext(RayCoherence::Incoherent);
+    RTCRay r = toEmbree(ray).ray;
+    rtcOccluded1(scene_, &context, &r);
+    return r.tfar < 0.0f;  // Embree sets tfar = -inf on a hit
+}
+
+void EmbreeSceneAccel::intersect8(const int* valid, RayHitPacket8& packet, RayCoherence c) const {
+    RTCIntersectContext context = makeContext(c);
+    rtcIntersect8(valid, scene_, &context, reinterpret_cast<RTCRayHit8*>(&packet));
+}
+
+void EmbreeSceneAccel::intersect16(const int* valid, RayHitPacket16& packet,
+                                   RayCoherence c) const {
+    RTCIntersectContext context = makeContext(c);
+    rtcIntersect16(valid, scene_, &context, reinterpret_cast<RTCRayHit16*>(&packet));
+}
+
+int EmbreeSceneAccel::nativePacketWidth() const {
+    if (device_.supportsNative16()) return 16;
+    if (device_.supportsNative8()) return 8;
+    return 1;
+}
+
+bool EmbreeSceneAccel::onProgress(void* self, double fraction) {
+    auto* accel = static_cast<EmbreeSceneAccel*>(self);
+    accel->progress_(std::clamp(fraction, 0.0, 1.0));
+    return true;  // never cancel
+}
+
+}  // namespace strahl

@@ -1,0 +1,61 @@
+#pragma once
+// EmbreeSceneAccel: what every Embree-backed Accel shares, whatever its scene
+// holds — the device, one scene with strahl's build settings and progress
+// callback, and the ray queries. Internal to src/accel/: only this module may
+// see Embree types.
+//
+// A subclass attaches its geometry in its constructor (attach()) and then
+// builds the BVH (commit()). The base owns the scene, so a subclass
+// constructor that throws half way still releases it.
+//
+// Queries: single rays go through an RTCRayHit; packets are handed to
+// rtcIntersect8/16 by reinterpret_cast of strahl's RayHitPacket<N>, whose every
+// field offset embree_scene.cpp pins to RTCRayHitN with static_asserts. No
+// exception ever crosses an Embree call: errors are recorded by the device
+// callback and thrown after the call returns (EmbreeDevice::check).
+
+#include <embree3/rtcore.h>
+
+#include <functional>
+
+#include "embree_device.h"
+#include "strahl/accel/accel.h"
+
+namespace strahl {
+
+class EmbreeSceneAccel : public Accel {
+public:
+    ~EmbreeSceneAccel() override;
+    EmbreeSceneAccel(const EmbreeSceneAccel&) = delete;
+    EmbreeSceneAccel& operator=(const EmbreeSceneAccel&) = delete;
+
+    Hit intersect(const Ray& ray) const override;
+    bool occluded(const Ray& ray) const override;
+    void intersect8(const int* valid, RayHitPacket8& packet, RayCoherence c) const override;
+    void intersect16(const int* valid, RayHitPacket16& packet, RayCoherence c) const override;
+    int nativePacketWidth() const override;
+    Bounds3 bounds() const override { return bounds_; }
+    size_t memoryBytes() const override { return device_.bytesInUse(); }
+
+protected:
+    // Creates the device (options.threads) and an empty scene of medium build
+    // quality that reports progress to options.progress.
+    explicit EmbreeSceneAccel(const AccelBuildOptions& options);
+
+    RTCDevice device() const { return device_.handle(); }
+    // Commits `geometry`, attaches it as `geomID`, drops the caller's reference
+    // and throws strahl::Error "Embree: <what>: ..." if Embree reported an error.
+    void attach(RTCGeometry geometry, unsigned geomID, const Bounds3& bounds, const char* what);
+    // Builds the BVH over everything attached.
+    void commit();
+
+private:
+    static bool onProgress(void* self, double fraction);
+
+    EmbreeDevice device_;
+    std::function<void(double)> progress_;
+    RTCScene scene_ = nullptr;
+    Bounds3 bounds_;
+};
+
+}  // namespace strahl
