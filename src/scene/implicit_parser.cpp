@@ -167,7 +167,10 @@ void parseImplicitShape(const JsonValue& shape, ImplicitSurfacePtr& surface,
         options.cellsPerAxis = static_cast<int>(cells->integer(1, kMaxCellsPerAxis));
     if (auto tolerance = shape.find("tolerance")) {
         options.relativeTolerance = tolerance->number();
-        if (!(options.relativeTolerance >= 1e-12 && options.relativeTolerance <= 0.1))
+        // Scene numbers are floats: compare with the float nearest each end, so
+        // that "1e-12" and "0.1" as written are accepted.
+        if (!(options.relativeTolerance >= static_cast<double>(1e-12f) &&
+              options.relativeTolerance <= static_cast<double>(0.1f)))
             tolerance->fail("must lie in [1e-12, 0.1], got ", options.relativeTolerance);
     }
     if (!surface->bounds() && !options.box)

@@ -67,7 +67,7 @@ TEST_P(Regression, MatchesReference) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, Regression,
                          ::testing::Values("quad_and_box", "cornell_direct", "cornell_ortho_normal",
-                                           "cornell_primid"));
+                                           "cornell_primid", "implicit_direct"));
 
 }  // namespace
 }  // namespace strahl
