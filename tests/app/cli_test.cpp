@@ -12,6 +12,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "cli_runner.h"
 #include "test_support.h"
 
 namespace strahl {
@@ -22,28 +23,9 @@ using test::contains;
 using test::readFile;
 using test::writeFile;
 
-struct RunResult {
-    int status = -1;
-    std::string out, err;
-};
+using test::RunResult;
 
-// ctest runs tests in parallel processes: capture files are per process.
-RunResult run(const std::string& args) {
-    const fs::path dir = fs::temp_directory_path();
-    const std::string tag = std::to_string(getpid());
-    const fs::path out = dir / ("strahl-cli-stdout-" + tag + ".txt");
-    const fs::path err = dir / ("strahl-cli-stderr-" + tag + ".txt");
-    const std::string command = std::string(STRAHL_BINARY) + " " + args + " >" + out.string() +
-                                " 2>" + err.string();
-    const int raw = std::system(command.c_str());
-    RunResult r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    r.out = readFile(out);
-    r.err = readFile(err);
-    fs::remove(out);
-    fs::remove(err);
-    return r;
-}
+RunResult run(const std::string& args) { return test::runStrahl(args); }
 
 // No file at all in `dir` (neither the output nor a temporary).
 bool emptyDir(const fs::path& dir) { return fs::is_empty(dir); }

@@ -17,6 +17,7 @@
 #include "strahl/geometry/implicit_shape.h"
 #include "strahl/scene/scene_builder.h"
 #include "strahl/scene/scene_desc.h"
+#include "cli_runner.h"
 #include "test_support.h"
 
 namespace strahl {
@@ -27,28 +28,9 @@ using test::contains;
 using test::readFile;
 using test::writeFile;
 
-struct RunResult {
-    int status = -1;
-    std::string out, err;
-};
+using test::RunResult;
 
-// ctest runs tests in parallel processes: capture files are per process.
-RunResult run(const std::string& args) {
-    const fs::path dir = fs::temp_directory_path();
-    const std::string tag = std::to_string(getpid());
-    const fs::path out = dir / ("strahl-implicit-cli-stdout-" + tag + ".txt");
-    const fs::path err = dir / ("strahl-implicit-cli-stderr-" + tag + ".txt");
-    const std::string command = std::string(STRAHL_BINARY) + " " + args + " >" + out.string() +
-                                " 2>" + err.string();
-    const int raw = std::system(command.c_str());
-    RunResult r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    r.out = readFile(out);
-    r.err = readFile(err);
-    fs::remove(out);
-    fs::remove(err);
-    return r;
-}
+RunResult run(const std::string& args) { return test::runStrahl(args); }
 
 // A small scene: a floor triangle pair, then `implicitShapes` (JSON objects,
 // comma-separated), lit by a point light.
