@@ -5,14 +5,18 @@
 // 2. Parser is a recursive-descent parser, one function per precedence level.
 //    It does not build a syntax tree: it calls the Graph's constructors, which
 //    fold constant operands on the spot (computing in double with the same
-//    num:: functions the evaluator uses), pick the fused instruction for a
-//    constant operand (x - 2 becomes AddImm -2, x^3 becomes PowiImm 3) and
-//    return the existing node for a subexpression seen before, so the graph is
-//    a DAG of operations whose only constants are immediates.
-// 3. TapeBuilder walks the DAG from the result, operands first (the operand
-//    needing more registers first, which keeps the peak small), and gives each
-//    value the lowest free register; a register is freed after the last use of
-//    its value. Inputs live in the first registers and are never overwritten.
+//    num:: functions the evaluator uses), merge constants into an operand's
+//    immediate (x*2*pi is x*6.28...), pick the instruction with an immediate
+//    for a constant operand (x - 2 becomes AddImm -2, x^3 becomes PowiImm 3)
+//    and return the existing node for a subexpression seen before. The graph
+//    is a DAG of operations whose only constants are immediates.
+// 3. TapeBuilder fuses a product or square that only an addition uses into it
+//    (x*y + z is one MulAdd, x^2 + y^2 one SqrAddSqr), then walks the DAG from
+//    the result, operands first (the operand needing more registers first,
+//    which keeps the peak small), and gives each value the lowest free
+//    register; a register is freed after the last use of its value. Inputs
+//    live in the first registers and are never overwritten; a Return ends the
+//    tape.
 
 #include "strahl/geometry/formula.h"
 
@@ -21,6 +25,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -79,9 +84,15 @@ std::string quote(std::string_view text, size_t begin, size_t end) {
     return "'" + std::string(part) + "'";
 }
 
-bool isDigit(char c) { return c >= '0' && c <= '9'; }
-bool isNameStart(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
-bool isNameChar(char c) { return isNameStart(c) || isDigit(c); }
+bool isDigit(char c) {
+    return c >= '0' && c <= '9';
+}
+bool isNameStart(char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
+}
+bool isNameChar(char c) {
+    return isNameStart(c) || isDigit(c);
+}
 bool isSpace(char c) {
     return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
 }
@@ -99,10 +110,10 @@ struct Function {
 constexpr size_t kAny = std::numeric_limits<size_t>::max();
 // Alphabetical, as listed in messages.
 constexpr Function kFunctions[] = {
-    {"abs", Op::Abs, 1, 1},  {"atan", Op::Atan, 1, 1}, {"cos", Op::Cos, 1, 1},
-    {"exp", Op::Exp, 1, 1},  {"log", Op::Log, 1, 1},   {"max", Op::Max, 2, kAny},
-    {"min", Op::Min, 2, kAny}, {"pow", Op::Powr, 2, 2}, {"sin", Op::Sin, 1, 1},
-    {"sqr", Op::Sqr, 1, 1},  {"sqrt", Op::Sqrt, 1, 1}, {"tan", Op::Tan, 1, 1},
+    {"abs", Op::Abs, 1, 1},    {"atan", Op::Atan, 1, 1}, {"cos", Op::Cos, 1, 1},
+    {"exp", Op::Exp, 1, 1},    {"log", Op::Log, 1, 1},   {"max", Op::Max, 2, kAny},
+    {"min", Op::Min, 2, kAny}, {"pow", Op::Powr, 2, 2},  {"sin", Op::Sin, 1, 1},
+    {"sqr", Op::Sqr, 1, 1},    {"sqrt", Op::Sqrt, 1, 1}, {"tan", Op::Tan, 1, 1},
 };
 
 struct Constant {
@@ -178,14 +189,16 @@ void checkNames(std::span<const std::string> variables,
         const std::string& v = variables[i];
         if (!isName(v)) fail("variable '", v, "' is not a valid name");
         if (findFunction(v) || findConstant(v))
-            fail("variable '", v, "' has the name of a ", findFunction(v) ? "function" : "constant");
+            fail("variable '", v, "' has the name of a ",
+                 findFunction(v) ? "function" : "constant");
         if (std::find(variables.begin(), variables.begin() + static_cast<ptrdiff_t>(i), v) !=
             variables.begin() + static_cast<ptrdiff_t>(i))
             fail("variable '", v, "' is listed twice");
     }
     for (const auto& [name, value] : parameters) {
         if (!isName(name))
-            fail("parameter '", name, "' is not a valid name (letters, digits and '_', not "
+            fail("parameter '", name,
+                 "' is not a valid name (letters, digits and '_', not "
                  "starting with a digit)");
         if (std::find(variables.begin(), variables.end(), name) != variables.end())
             fail("parameter '", name, "' shadows the variable '", name, "'");
@@ -197,15 +210,17 @@ void checkNames(std::span<const std::string> variables,
 
 // ---- tokens -------------------------------------------------------------------
 
+// clang-format off
 enum class TokenKind {
     Number, Name, Plus, Minus, Star, Slash, Caret, LeftParen, RightParen, Comma, End
 };
+// clang-format on
 
 struct Token {
     TokenKind kind;
-    size_t offset;   // byte offset of the first character
-    size_t length;   // bytes
-    double number;   // the value of a Number
+    size_t offset;  // byte offset of the first character
+    size_t length;  // bytes
+    double number;  // the value of a Number
 };
 
 // A number: digits with an optional fraction (1, 1.5, .5, 1.) and an optional
@@ -258,6 +273,7 @@ std::vector<Token> tokenize(std::string_view text) {
         } else {
             TokenKind kind{};
             switch (c) {
+                // clang-format off
                 case '+': kind = TokenKind::Plus; break;
                 case '-': kind = TokenKind::Minus; break;
                 case '*': kind = TokenKind::Star; break;
@@ -266,9 +282,11 @@ std::vector<Token> tokenize(std::string_view text) {
                 case '(': kind = TokenKind::LeftParen; break;
                 case ')': kind = TokenKind::RightParen; break;
                 case ',': kind = TokenKind::Comma; break;
+                // clang-format on
                 case '=':
-                    failAt(text, i, "unexpected character '=': write the expression only "
-                                    "(a - b rather than a = b)");
+                    failAt(text, i,
+                           "unexpected character '=': write the expression only "
+                           "(a - b rather than a = b)");
                 default:
                     failAt(text, i, "unexpected character '", characterAt(text, i), "'");
             }
@@ -292,7 +310,7 @@ struct Node {
     enum class Kind : uint8_t { Constant, Variable, Operation };
     Kind kind;
     Op op;
-    int a, b;         // operand nodes, -1 if none
+    int a, b, c;      // operand nodes, -1 if none (c only in fused instructions)
     double imm;       // the constant's value, or the immediate of the operation
     size_t variable;  // input index of a Variable
     size_t offset;    // where the subexpression starts, for messages
@@ -303,6 +321,8 @@ struct Node {
 // evaluator's own double arithmetic.
 double apply(Op op, double a, double b, double imm) {
     switch (op) {
+        // clang-format off
+        case Op::Return: return a;
         case Op::Const: return imm;
         case Op::Add: return a + b;
         case Op::Sub: return a - b;
@@ -331,6 +351,14 @@ double apply(Op op, double a, double b, double imm) {
         case Op::Cos: return num::cos(a);
         case Op::Tan: return num::tan(a);
         case Op::Atan: return num::atan(a);
+        case Op::SqrAddSqr:  // fused instructions: the tape builder makes them, the graph never
+        case Op::Hypot:
+        case Op::AddSqr:
+        case Op::AddShiftedSqr:
+        case Op::SqrAddImm:
+        case Op::MulAdd:
+        case Op::MulImmAdd: break;
+            // clang-format on
     }
     return 0.0;
 }
@@ -342,7 +370,7 @@ public:
     explicit Graph(std::string_view text) : text_(text) {}
 
     const Node& node(int index) const { return nodes_[static_cast<size_t>(index)]; }
-    size_t size() const { return nodes_.size(); }
+    const std::vector<Node>& nodes() const { return nodes_; }
     bool isConstant(int index) const { return node(index).kind == Node::Kind::Constant; }
     double value(int index) const { return node(index).imm; }
 
@@ -350,11 +378,11 @@ public:
         if (!std::isfinite(value))
             failAt(text_, span.begin, quote(text_, span.begin, span.end), " evaluates to ", value,
                    " (a constant must be finite)");
-        return intern({Node::Kind::Constant, Op::Const, -1, -1, value, 0, span.begin, 0});
+        return intern({Node::Kind::Constant, Op::Const, -1, -1, -1, value, 0, span.begin, 0});
     }
 
     int variable(size_t index, Span span) {
-        return intern({Node::Kind::Variable, Op::Const, -1, -1, 0.0, index, span.begin, 0});
+        return intern({Node::Kind::Variable, Op::Const, -1, -1, -1, 0.0, index, span.begin, 0});
     }
 
     // An operation of one operand: Neg or a function of one argument.
@@ -362,52 +390,52 @@ public:
         if (isConstant(a)) return constant(apply(op, value(a), 0.0, 0.0), span);
         const Node& operand = node(a);
         if (op == Op::Neg && operand.kind == Node::Kind::Operation) {
-            if (operand.op == Op::Neg) return operand.a;  // --x = x
-            if (operand.op == Op::MulImm || operand.op == Op::DivImm)  // -(x*c) = x*(-c), exact
-                return operation(operand.op, operand.a, -1, -operand.imm, span);
+            // Each of these is exact: negation only flips a sign.
+            const int x = operand.a;
+            const double k = operand.imm;
+            switch (operand.op) {
+                case Op::Neg:
+                    return x;  // --x
+                case Op::MulImm:
+                    return operation(Op::MulImm, x, -1, -k, span);  // -(x*k)
+                case Op::DivImm:
+                    return operation(Op::DivImm, x, -1, -k, span);  // -(x/k)
+                case Op::AddImm:
+                    return operation(Op::SubImmLeft, x, -1, -k, span);  // -(x+k)
+                case Op::SubImmLeft:
+                    return operation(Op::AddImm, x, -1, -k, span);  // -(k-x)
+                default:
+                    break;
+            }
         }
         return operation(op, a, -1, 0.0, span);
     }
 
     int add(int a, int b, Span span) {
-        if (isConstant(a) && isConstant(b)) return constant(value(a) + value(b), span);
         if (isConstant(a)) std::swap(a, b);
-        if (isConstant(b)) return value(b) == 0.0 ? a : operation(Op::AddImm, a, -1, value(b), span);
+        if (isConstant(b)) return addConstant(a, value(b), span);
         return operation(Op::Add, std::min(a, b), std::max(a, b), 0.0, span);  // a + b = b + a
     }
 
     int subtract(int a, int b, Span span) {
-        if (isConstant(a) && isConstant(b)) return constant(value(a) - value(b), span);
-        if (isConstant(b))
-            return value(b) == 0.0 ? a : operation(Op::AddImm, a, -1, -value(b), span);
-        if (isConstant(a))
-            return value(a) == 0.0 ? unary(Op::Neg, b, span)
-                                   : operation(Op::SubImmLeft, b, -1, value(a), span);
+        if (isConstant(b)) return addConstant(a, -value(b), span);
+        if (isConstant(a)) return subtractFromConstant(value(a), b, span);
         return operation(Op::Sub, a, b, 0.0, span);
     }
 
     int multiply(int a, int b, Span span) {
-        if (isConstant(a) && isConstant(b)) return constant(value(a) * value(b), span);
         if (isConstant(a)) std::swap(a, b);
-        if (isConstant(b)) {
-            if (value(b) == 1.0) return a;
-            if (value(b) == -1.0) return unary(Op::Neg, a, span);
-            return operation(Op::MulImm, a, -1, value(b), span);
-        }
+        if (isConstant(b)) return multiplyByConstant(a, value(b), span);
         if (a == b) return operation(Op::Sqr, a, -1, 0.0, span);  // tighter for intervals
         return operation(Op::Mul, std::min(a, b), std::max(a, b), 0.0, span);
     }
 
     int divide(int a, int b, Span span, Span divisor) {
         if (isConstant(b) && value(b) == 0.0)
-            failAt(text_, divisor.begin, "division by zero (", quote(text_, divisor.begin, divisor.end),
-                   " is 0)");
+            failAt(text_, divisor.begin, "division by zero (",
+                   quote(text_, divisor.begin, divisor.end), " is 0)");
         if (isConstant(a) && isConstant(b)) return constant(value(a) / value(b), span);
-        if (isConstant(b)) {
-            if (value(b) == 1.0) return a;
-            if (value(b) == -1.0) return unary(Op::Neg, a, span);
-            return operation(Op::DivImm, a, -1, value(b), span);
-        }
+        if (isConstant(b)) return divideByConstant(a, value(b), span);
         if (isConstant(a)) return operation(Op::DivImmLeft, b, -1, value(a), span);
         return operation(Op::Div, a, b, 0.0, span);
     }
@@ -416,8 +444,8 @@ public:
     int power(int a, int b, Span span) {
         if (isConstant(b)) {
             const double exponent = value(b);
-            const bool integer = exponent == std::trunc(exponent) &&
-                                 std::abs(exponent) <= kMaxIntegerExponent;
+            const bool integer =
+                exponent == std::trunc(exponent) && std::abs(exponent) <= kMaxIntegerExponent;
             const Op op = integer ? Op::PowiImm : Op::PowrImm;
             if (isConstant(a)) return constant(apply(op, value(a), 0.0, exponent), span);
             if (integer && exponent == 0.0) return constant(1.0, span);  // powi(x, 0) is 1
@@ -443,8 +471,74 @@ public:
     }
 
 private:
+    // The constructors below merge a constant into the immediate of an operand
+    // that has one: (x + 1) - 3 is x - 2 and x*2*pi is x*(2*pi), one
+    // instruction. This reassociates, so the last bit may differ from strict
+    // left-to-right evaluation; a merged constant that is not a normal number
+    // is not merged.
+    static bool mergeable(double merged) { return std::isnormal(merged); }
+    bool isOperation(int index, Op op) const {
+        return node(index).kind == Node::Kind::Operation && node(index).op == op;
+    }
+
+    // a + c
+    int addConstant(int a, double c, Span span) {
+        if (isConstant(a)) return constant(value(a) + c, span);
+        if (c == 0.0) return a;
+        const int x = node(a).a;
+        const double k = node(a).imm;
+        if (isOperation(a, Op::AddImm) && (k + c == 0.0 || mergeable(k + c)))
+            return addConstant(x, k + c, span);  // (x + k) + c
+        if (isOperation(a, Op::SubImmLeft) && (k + c == 0.0 || mergeable(k + c)))
+            return subtractFromConstant(k + c, x, span);  // (k - x) + c
+        return operation(Op::AddImm, a, -1, c, span);
+    }
+
+    // c - a
+    int subtractFromConstant(double c, int a, Span span) {
+        const int x = node(a).a;
+        const double k = node(a).imm;
+        if (isOperation(a, Op::AddImm) && (c - k == 0.0 || mergeable(c - k)))
+            return subtractFromConstant(c - k, x, span);  // c - (x + k)
+        if (isOperation(a, Op::SubImmLeft) && (c - k == 0.0 || mergeable(c - k)))
+            return addConstant(x, c - k, span);  // c - (k - x)
+        if (c == 0.0) return unary(Op::Neg, a, span);
+        return operation(Op::SubImmLeft, a, -1, c, span);
+    }
+
+    // a * c
+    int multiplyByConstant(int a, double c, Span span) {
+        if (isConstant(a)) return constant(value(a) * c, span);
+        if (c == 1.0) return a;
+        if (c == -1.0) return unary(Op::Neg, a, span);
+        const int x = node(a).a;
+        const double k = node(a).imm;
+        if (isOperation(a, Op::MulImm) && mergeable(k * c))
+            return multiplyByConstant(x, k * c, span);  // (x * k) * c
+        if (isOperation(a, Op::DivImm) && mergeable(c / k))
+            return multiplyByConstant(x, c / k, span);  // (x / k) * c
+        if (isOperation(a, Op::DivImmLeft) && mergeable(k * c))
+            return operation(Op::DivImmLeft, x, -1, k * c, span);  // (k / x) * c
+        return operation(Op::MulImm, a, -1, c, span);
+    }
+
+    // a / c, c != 0
+    int divideByConstant(int a, double c, Span span) {
+        if (c == 1.0) return a;
+        if (c == -1.0) return unary(Op::Neg, a, span);
+        const int x = node(a).a;
+        const double k = node(a).imm;
+        if (isOperation(a, Op::MulImm) && mergeable(k / c))
+            return multiplyByConstant(x, k / c, span);  // (x * k) / c
+        if (isOperation(a, Op::DivImm) && mergeable(k * c))
+            return divideByConstant(x, k * c, span);  // (x / k) / c
+        if (isOperation(a, Op::DivImmLeft) && mergeable(k / c))
+            return operation(Op::DivImmLeft, x, -1, k / c, span);  // (k / x) / c
+        return operation(Op::DivImm, a, -1, c, span);
+    }
+
     int operation(Op op, int a, int b, double imm, Span span) {
-        return intern({Node::Kind::Operation, op, a, b, imm, 0, span.begin, 0});
+        return intern({Node::Kind::Operation, op, a, b, -1, imm, 0, span.begin, 0});
     }
 
     // The index of an identical node if there is one, else of the new node.
@@ -456,8 +550,10 @@ private:
         if (n.kind == Node::Kind::Operation) {
             n.chain = 1 + std::max(node(n.a).chain, n.b >= 0 ? node(n.b).chain : 0);
             if (n.chain > kMaxChain)
-                failAt(text_, n.offset, "formula is too deeply nested for the evaluator (a chain "
-                       "of more than ", kMaxChain, " operations)");
+                failAt(text_, n.offset,
+                       "formula is too deeply nested for the evaluator (a chain "
+                       "of more than ",
+                       kMaxChain, " operations)");
         }
         nodes_.push_back(n);
         const int index = static_cast<int>(nodes_.size() - 1);
@@ -507,8 +603,10 @@ private:
     public:
         explicit NestingGuard(Parser& parser) : parser_(parser) {
             if (++parser_.nesting_ > kMaxNesting)
-                failAt(parser_.text_, parser_.peek().offset, "formula is too deeply nested (more "
-                       "than ", kMaxNesting, " levels of parentheses, calls, signs or exponents)");
+                failAt(parser_.text_, parser_.peek().offset,
+                       "formula is too deeply nested (more "
+                       "than ",
+                       kMaxNesting, " levels of parentheses, calls, signs or exponents)");
         }
         ~NestingGuard() { --parser_.nesting_; }
         NestingGuard(const NestingGuard&) = delete;
@@ -632,7 +730,7 @@ private:
         const std::string_view name = lexeme(nameToken);
         const Function* function = findFunction(name);
         if (!function) {
-            const char* kind = names_.variable(name)     ? "a variable"
+            const char* kind = names_.variable(name)    ? "a variable"
                                : names_.parameter(name) ? "a parameter"
                                : findConstant(name)     ? "a constant"
                                                         : nullptr;
@@ -702,33 +800,36 @@ private:
 
 class TapeBuilder {
 public:
-    TapeBuilder(std::string_view text, const Graph& graph, size_t variableCount)
+    TapeBuilder(std::string_view text, std::vector<Node> nodes, size_t variableCount)
         : text_(text),
-          graph_(graph),
+          nodes_(std::move(nodes)),
           variableCount_(variableCount),
-          remainingUses_(graph.size(), 0),
-          register_(graph.size(), -1),
-          need_(graph.size(), -1),
+          remainingUses_(nodes_.size(), 0),
+          register_(nodes_.size(), -1),
+          need_(nodes_.size(), -1),
           busy_(Formula::kMaxRegisters, false),
           usedVariables_(variableCount, false) {}
 
     void build(int root) {
         countUses(root);
         ++remainingUses_[index(root)];  // the result stays live to the end
-        result_ = emit(root);
+        for (size_t i = 0; i < nodes_.size(); ++i)
+            if (remainingUses_[i] > 0 && nodes_[i].kind == Node::Kind::Operation) fuse(nodes_[i]);
+        const uint8_t result = emit(root);
+        tape.push_back({Op::Return, 0, result, 0, 0, 0.0});
     }
 
     std::vector<Instruction> tape;
-    uint16_t result() const { return result_; }
     size_t registerCount() const { return std::max(variableCount_, highWater_); }
     const std::vector<bool>& usedVariables() const { return usedVariables_; }
 
 private:
     static size_t index(int node) { return static_cast<size_t>(node); }
+    Node& node(int i) { return nodes_[index(i)]; }
 
     // How often each reachable node is an operand, and which inputs are used.
-    void countUses(int node) {
-        const Node& n = graph_.node(node);
+    void countUses(int i) {
+        const Node& n = node(i);
         if (n.kind == Node::Kind::Variable) usedVariables_[n.variable] = true;
         for (const int operand : {n.a, n.b}) {
             if (operand < 0) continue;
@@ -736,69 +837,166 @@ private:
         }
     }
 
-    // Registers needed to compute a node (Sethi-Ullman number, sharing ignored).
-    int need(int node) {
-        int& memo = need_[index(node)];
-        if (memo >= 0) return memo;
-        const Node& n = graph_.node(node);
-        if (n.kind == Node::Kind::Variable) return memo = 0;
-        if (n.kind == Node::Kind::Constant) return memo = 1;
-        const int first = need(n.a), second = n.b >= 0 ? need(n.b) : 0;
-        return memo = first == second ? first + 1 : std::max(first, second);
+    bool isSingleUse(int i, Op op) {
+        return i >= 0 && node(i).kind == Node::Kind::Operation && node(i).op == op &&
+               remainingUses_[index(i)] == 1;
     }
 
-    uint16_t emit(int node) {
-        if (register_[index(node)] >= 0) return static_cast<uint16_t>(register_[index(node)]);
-        const Node& n = graph_.node(node);
-        if (n.kind == Node::Kind::Variable) return assign(node, n.variable);
+    // Merges a product or square that only an addition uses into it: one
+    // dispatch instead of two or three, same arithmetic. Consumed nodes are dead.
+    void fuse(Node& n) {
+        // Operands are fused before the nodes that use them (they come first
+        // in the node list), so a square root sees a fused sum of squares.
+        if (n.op == Op::Sqrt && isSingleUse(n.a, Op::SqrAddSqr)) {  // sqrt(a^2 + b^2)
+            const Node& sum = node(n.a);
+            consume(n.a);
+            n.op = Op::Hypot;
+            n.b = sum.b;
+            n.a = sum.a;
+            return;
+        }
+        if (n.op == Op::AddImm && isSingleUse(n.a, Op::Sqr)) {  // a^2 + k
+            consume(n.a);
+            n.op = Op::SqrAddImm;
+            n.a = node(n.a).a;
+            return;
+        }
+        if (n.op == Op::Add && isSingleUse(n.a, Op::Sqr) && isSingleUse(n.b, Op::Sqr) &&
+            !isShiftedSquare(n.a) && !isShiftedSquare(n.b)) {  // a^2 + b^2
+            consume(n.a);
+            consume(n.b);
+            n.op = Op::SqrAddSqr;
+            n.a = node(n.a).a;
+            n.b = node(n.b).a;
+            return;
+        }
+        if (n.op == Op::Add) {
+            for (const auto& [other, candidate] : {std::pair{n.a, n.b}, std::pair{n.b, n.a}}) {
+                const Node& m = node(candidate);
+                if (isSingleUse(candidate, Op::Mul)) {  // a*b + c
+                    n.op = Op::MulAdd;
+                    n.a = m.a;
+                    n.b = m.b;
+                    n.c = other;
+                } else if (isSingleUse(candidate, Op::MulImm)) {  // a*k + b
+                    n.op = Op::MulImmAdd;
+                    n.a = m.a;
+                    n.b = other;
+                    n.imm = m.imm;
+                } else if (isShiftedSquare(candidate)) {  // a + (b + k)^2
+                    const Node& shift = node(m.a);
+                    consume(m.a);
+                    n.op = Op::AddShiftedSqr;
+                    n.a = other;
+                    n.b = shift.a;
+                    n.imm = shift.imm;
+                } else if (isSingleUse(candidate, Op::Sqr)) {  // a + b^2
+                    n.op = Op::AddSqr;
+                    n.a = other;
+                    n.b = m.a;
+                } else {
+                    continue;
+                }
+                consume(candidate);
+                return;
+            }
+        }
+        if (n.op == Op::Sub && isSingleUse(n.b, Op::MulImm)) {  // a - b*k = b*(-k) + a, exactly
+            const Node& m = node(n.b);
+            consume(n.b);
+            n.op = Op::MulImmAdd;
+            n.b = n.a;
+            n.a = m.a;
+            n.imm = -m.imm;
+        }
+    }
+
+    // (b + k)^2 with both parts used only there.
+    bool isShiftedSquare(int i) {
+        return isSingleUse(i, Op::Sqr) && isSingleUse(node(i).a, Op::AddImm);
+    }
+
+    // Node i is now computed inside the instruction that used it; its
+    // operands are used by that instruction instead.
+    void consume(int i) { remainingUses_[index(i)] = 0; }
+
+    std::vector<int> operandsOf(const Node& n) const {
+        std::vector<int> operands;
+        for (const int operand : {n.a, n.b, n.c})
+            if (operand >= 0) operands.push_back(operand);
+        return operands;
+    }
+
+    // Registers needed to compute a node (Sethi-Ullman number, sharing ignored):
+    // operands in decreasing need, each earlier result held while the next is
+    // computed.
+    int need(int i) {
+        int& memo = need_[index(i)];
+        if (memo >= 0) return memo;
+        const Node& n = node(i);
+        if (n.kind == Node::Kind::Variable) return memo = 0;
+        if (n.kind == Node::Kind::Constant) return memo = 1;
+        std::vector<int> needs;
+        for (const int operand : operandsOf(n)) needs.push_back(need(operand));
+        std::sort(needs.begin(), needs.end(), std::greater<>());
+        int result = 1;
+        for (size_t k = 0; k < needs.size(); ++k)
+            result = std::max(result, needs[k] + static_cast<int>(k));
+        return memo = result;
+    }
+
+    uint8_t emit(int i) {
+        if (register_[index(i)] >= 0) return static_cast<uint8_t>(register_[index(i)]);
+        const Node& n = node(i);
+        if (n.kind == Node::Kind::Variable) return assign(i, n.variable);
         if (n.kind == Node::Kind::Constant) {  // only a formula that is constant as a whole
-            const uint16_t dst = allocate(node);
-            tape.push_back({Op::Const, dst, 0, 0, n.imm});
+            const uint8_t dst = allocate(i);
+            tape.push_back({Op::Const, dst, 0, 0, 0, n.imm});
             return dst;
         }
-        // The operand that needs more registers first: its temporaries are free
-        // again before the other operand is computed.
-        if (n.b >= 0 && need(n.b) > need(n.a)) {
-            emit(n.b);
-            emit(n.a);
-        } else {
-            emit(n.a);
-            if (n.b >= 0) emit(n.b);
-        }
-        const uint16_t a = static_cast<uint16_t>(register_[index(n.a)]);
-        const uint16_t b = n.b >= 0 ? static_cast<uint16_t>(register_[index(n.b)]) : 0;
-        release(n.a);
-        if (n.b >= 0) release(n.b);
-        const uint16_t dst = allocate(node);  // may reuse a or b
-        tape.push_back({n.op, dst, a, b, n.imm});
+        // The operand that needs more registers first: its temporaries are
+        // free again before the next operand is computed.
+        std::vector<int> operands = operandsOf(n);
+        std::vector<int> order = operands;
+        std::stable_sort(order.begin(), order.end(),
+                         [&](int x, int y) { return need(x) > need(y); });
+        for (const int operand : order) emit(operand);
+        uint8_t reg[3] = {0, 0, 0};
+        for (size_t k = 0; k < operands.size(); ++k)
+            reg[k] = static_cast<uint8_t>(register_[index(operands[k])]);
+        for (const int operand : operands) release(operand);
+        const uint8_t dst = allocate(i);  // may reuse an operand's register
+        tape.push_back({n.op, dst, reg[0], reg[1], reg[2], n.imm});
         return dst;
     }
 
-    uint16_t assign(int node, size_t reg) {
-        register_[index(node)] = static_cast<int>(reg);
-        return static_cast<uint16_t>(reg);
+    uint8_t assign(int i, size_t reg) {
+        register_[index(i)] = static_cast<int>(reg);
+        return static_cast<uint8_t>(reg);
     }
 
-    uint16_t allocate(int node) {
+    uint8_t allocate(int i) {
         for (size_t reg = variableCount_; reg < Formula::kMaxRegisters; ++reg) {
             if (busy_[reg]) continue;
             busy_[reg] = true;
             highWater_ = std::max(highWater_, reg + 1);
-            return assign(node, reg);
+            return assign(i, reg);
         }
-        failAt(text_, graph_.node(node).offset, "formula is too large for the evaluator (it "
-               "needs more than ", Formula::kMaxRegisters, " registers)");
+        failAt(text_, node(i).offset,
+               "formula is too large for the evaluator (it needs more "
+               "than ",
+               Formula::kMaxRegisters, " registers)");
     }
 
-    // One use of `node` done; its register is free after the last one.
-    void release(int node) {
-        if (--remainingUses_[index(node)] > 0) return;
-        if (graph_.node(node).kind == Node::Kind::Variable) return;  // inputs stay
-        busy_[static_cast<size_t>(register_[index(node)])] = false;
+    // One use of node i done; its register is free after the last one.
+    void release(int i) {
+        if (--remainingUses_[index(i)] > 0) return;
+        if (node(i).kind == Node::Kind::Variable) return;  // inputs stay
+        busy_[static_cast<size_t>(register_[index(i)])] = false;
     }
 
     std::string_view text_;
-    const Graph& graph_;
+    std::vector<Node> nodes_;
     size_t variableCount_;
     std::vector<int> remainingUses_;
     std::vector<int> register_;  // per node, -1 until computed
@@ -806,7 +1004,6 @@ private:
     std::vector<bool> busy_;
     std::vector<bool> usedVariables_;
     size_t highWater_ = 0;
-    uint16_t result_ = 0;
 };
 
 }  // namespace
@@ -819,7 +1016,7 @@ Formula Formula::compile(std::string_view text, std::span<const std::string> var
     Parser parser(text, tokenize(text), names, graph);
     const int root = parser.parseFormula();
 
-    TapeBuilder builder(text, graph, variables.size());
+    TapeBuilder builder(text, graph.nodes(), variables.size());
     builder.build(root);
 
     Formula formula;
@@ -828,7 +1025,6 @@ Formula Formula::compile(std::string_view text, std::span<const std::string> var
     formula.usedVariables_ = builder.usedVariables();
     formula.variableCount_ = variables.size();
     formula.registerCount_ = builder.registerCount();
-    formula.result_ = builder.result();
     return formula;
 }
 

