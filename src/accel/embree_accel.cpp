@@ -126,11 +126,15 @@ private:
     }
 
     void attachUserShape(const UserShape& shape, unsigned geomID) {
+        // Embree silently drops or mistraverses primitives with NaN or empty
+        // boxes: check them all, and take their union on the way.
         const uint32_t count = shape.primitiveCount();
+        Bounds3 all;
         for (uint32_t prim = 0; prim < count; ++prim) {
             const Bounds3 b = shape.primitiveBounds(prim);
             if (b.empty() || !isFinite(b.min) || !isFinite(b.max))
                 fail("shape ", geomID, ": primitive ", prim, " has no finite bounds");
+            all.expand(b);
         }
         RTCGeometry geom = rtcNewGeometry(device(), RTC_GEOMETRY_TYPE_USER);
         rtcSetGeometryUserPrimitiveCount(geom, count);
@@ -138,7 +142,7 @@ private:
         rtcSetGeometryBoundsFunction(geom, &userBounds, nullptr);
         rtcSetGeometryIntersectFunction(geom, &userIntersect);
         rtcSetGeometryOccludedFunction(geom, &userOccluded);
-        attach(geom, geomID, shape.bounds(), "adding a user shape");
+        attach(geom, geomID, all, "adding a user shape");
     }
 };
 
@@ -151,10 +155,7 @@ std::unique_ptr<Accel> buildEmbreeAccel(std::span<const ShapeRef> shapes,
 
 std::unique_ptr<Accel> buildEmbreeAccel(std::span<const TriangleMesh* const> meshes,
                                         const AccelBuildOptions& options) {
-    std::vector<ShapeRef> shapes;
-    shapes.reserve(meshes.size());
-    for (const TriangleMesh* mesh : meshes) shapes.push_back(ShapeRef{mesh, nullptr});
-    return std::make_unique<EmbreeAccel>(shapes, options);
+    return std::make_unique<EmbreeAccel>(meshShapeRefs(meshes), options);
 }
 
 const char* embreeVersion() { return RTC_VERSION_STRING; }

@@ -6,7 +6,6 @@
 
 #include "strahl/core/error.h"
 #include "strahl/film/image_output.h"
-#include "strahl/geometry/implicit_shape.h"
 #include "strahl/meshio/mesh_file.h"
 #include "strahl/render/progress.h"
 #include "strahl/render/renderer.h"
@@ -140,10 +139,9 @@ int runInfo(const Options& o) {
     for (size_t i = 0; i < world.shapes.size(); ++i) {
         const SceneShape& shape = world.shapes[i];
         if (shape.user) {
-            const auto* implicit = dynamic_cast<const ImplicitShape*>(shape.user.get());
-            std::printf("  [%zu] %-24s %10u cells     implicit %s\n", i, shape.name.c_str(),
-                        shape.user->primitiveCount(),
-                        implicit ? implicit->surface().describe().c_str() : "");
+            std::printf("  [%zu] %-24s %10u %-9s %s\n", i, shape.name.c_str(),
+                        shape.user->primitiveCount(), shape.user->primitiveNoun(),
+                        shape.user->describe().c_str());
             continue;
         }
         const TriangleMesh& m = shape.mesh;

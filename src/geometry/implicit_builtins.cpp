@@ -63,6 +63,7 @@ public:
         const float r = static_cast<float>(r_);
         return Bounds3{Vec3(-r), Vec3(r)};
     }
+    bool hasClosedForm() const override { return true; }
     int closedFormRoots(const DVec3& o, const DVec3& d, double roots[4]) const override {
         // Δ/4 = (o·d)² − |d|²(|o|² − r²) loses every digit when the ray starts
         // far away; the equal form |d|²(r² − |o − (o·d/|d|²) d|²) measures the
@@ -96,6 +97,7 @@ public:
                      2 * q_.zz * v.z + q_.yz * v.y + q_.xz * v.x + q_.z);
     }
     std::optional<Bounds3> bounds() const override { return std::nullopt; }
+    bool hasClosedForm() const override { return true; }
     int closedFormRoots(const DVec3& o, const DVec3& d, double roots[4]) const override {
         // f(o + t d) = a t² + b t + c with a = f₂(d) (the quadratic part at d),
         // b = ∇f(o)·d, c = f(o).

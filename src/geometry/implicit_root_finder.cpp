@@ -19,6 +19,12 @@ double valueAt(const ImplicitSurface& f, const DVec3& o, const DVec3& d, double 
     return f.value(o + t * d);
 }
 
+// Whether end values fa, fb bracket a root: not both strictly of one sign
+// (a zero counts), and neither NaN.
+bool bracketsRoot(double fa, double fb) {
+    return (fa <= 0.0 && fb >= 0.0) || (fa >= 0.0 && fb <= 0.0);
+}
+
 // The mean-value form F(T) ⊆ F(m) + F'(T)·(T − m), m the midpoint. The natural
 // interval extension overestimates by O(width) — every occurrence of t is
 // treated as independent — which near a tangency leaves thousands of tiny
@@ -94,8 +100,7 @@ std::optional<ImplicitRoot> findFirstRoot(const ImplicitSurface& f, const DVec3&
         if (!F.d[0].containsZero()) {
             // Monotone: a root exactly when the end values differ in sign.
             const double fa = valueAt(f, o, d, s.a), fb = valueAt(f, o, d, s.b);
-            if ((fa < 0.0 && fb < 0.0) || (fa > 0.0 && fb > 0.0) || fa != fa || fb != fb)
-                continue;
+            if (!bracketsRoot(fa, fb)) continue;
             return refineRoot(f, o, d, s.a, s.b, fa, fb, stats);
         }
         const double mid = 0.5 * (s.a + s.b);
@@ -103,8 +108,7 @@ std::optional<ImplicitRoot> findFirstRoot(const ImplicitSurface& f, const DVec3&
             // Unresolved at the resolution asked for. A sign change still gives
             // an accurate root; otherwise it is a tangent or sub-tolerance hit.
             const double fa = valueAt(f, o, d, s.a), fb = valueAt(f, o, d, s.b);
-            if ((fa <= 0.0 && fb >= 0.0) || (fa >= 0.0 && fb <= 0.0))
-                return refineRoot(f, o, d, s.a, s.b, fa, fb, stats);
+            if (bracketsRoot(fa, fb)) return refineRoot(f, o, d, s.a, s.b, fa, fb, stats);
             return ImplicitRoot{mid, 0.5 * (s.b - s.a)};
         }
         stack[top++] = {mid, s.b};  // the far half waits

@@ -93,8 +93,7 @@ ImplicitShape::ImplicitShape(ImplicitSurfacePtr surface, const Mat4& objectToWor
         fail("the tolerance must lie in (0, 1)");
     tolerance_ = options.relativeTolerance * std::max(glm::length(extent), 1e-30);
 
-    double scratch[4];
-    closedForm_ = surface_->closedFormRoots(DVec3(0.0), DVec3(0.0, 0.0, 1.0), scratch) >= 0;
+    closedForm_ = surface_->hasClosedForm();
     const int n = options.cellsPerAxis > 0 ? options.cellsPerAxis : (closedForm_ ? 1 : kDefaultCells);
     if (n > kMaxCells) fail("at most ", kMaxCells, " cells per axis (got ", n, ")");
 
@@ -130,6 +129,7 @@ ImplicitShape::ImplicitShape(ImplicitSurfacePtr surface, const Mat4& objectToWor
         }
         if (!isFiniteD(lo) || !isFiniteD(hi)) fail("the transformed surface is not finite");
         worldBounds_.push_back(Bounds3{toFloatDown(lo), toFloatUp(hi)});
+        bounds_.expand(worldBounds_.back());
     }
 }
 
@@ -140,41 +140,18 @@ bool ImplicitShape::intersect(const Ray& ray, uint32_t prim, Hit& hit) const noe
     double t0 = ray.tnear, t1 = ray.tfar;
     if (!clipToBox(o, d, cell.min, cell.max, t0, t1)) return false;
 
-    const double tnear = ray.tnear, tfar = ray.tfar;
-    std::optional<ImplicitRoot> root;
-    if (closedForm_) {
-        double roots[4];
-        const int count = surface_->closedFormRoots(o, d, roots);
-        for (int i = 0; i < count && !root; ++i) {
-            if (!(roots[i] >= t0 && roots[i] <= t1)) continue;
-            if (!(static_cast<float>(roots[i]) > ray.tnear && static_cast<float>(roots[i]) < ray.tfar))
-                continue;
-            // The quadratic's rounding error, estimated by one Newton step.
-            const double t = roots[i];
-            const DVec3 g = surface_->gradient(o + t * d);
-            const double slope = glm::dot(g, d);
-            const double step = slope != 0.0 ? surface_->value(o + t * d) / slope : 0.0;
-            root = ImplicitRoot{t, 2.0 * std::abs(step) + 1e-12 * std::abs(t)};
-        }
-    } else {
-        const double tolT = tolerance_ / glm::length(d);
-        double from = std::max(t0, tnear);
-        // A root whose float t rounds onto tnear or tfar is outside the open
-        // interval; search on past it (at most a few times: roots are isolated).
-        for (int attempt = 0; attempt < 4 && !root; ++attempt) {
-            root = findFirstRoot(*surface_, o, d, from, std::min(t1, tfar), tolT);
-            if (!root) break;
-            const float t = static_cast<float>(root->t);
-            if (t > ray.tnear && t < ray.tfar) break;
-            if (t >= ray.tfar) return false;
-            from = root->t + std::max(root->tError, tolT);
-            root.reset();
-        }
-    }
+    std::optional<ImplicitRoot> root =
+        closedForm_ ? closedFormRoot(ray, o, d, t0, t1) : searchedRoot(ray, o, d, t0, t1);
     if (!root) return false;
 
     const DVec3 pObject = o + root->t * d;
     DVec3 gradient = surface_->gradient(pObject);
+    if (closedForm_) {
+        // The quadratic's rounding error, estimated by one Newton step.
+        const double slope = glm::dot(gradient, d);
+        const double step = slope != 0.0 ? surface_->value(pObject) / slope : 0.0;
+        root->tError = 2.0 * std::abs(step) + 1e-12 * std::abs(root->t);
+    }
     if (!isFiniteD(gradient) || gradient == DVec3(0.0)) gradient = -d;  // face the ray
     Vec3 Ng = Vec3(normalToWorld_ * gradient);
     if (!isFinite(Ng) || Ng == Vec3(0.0f)) Ng = -ray.dir;
@@ -183,6 +160,38 @@ bool ImplicitShape::intersect(const Ray& ray, uint32_t prim, Hit& hit) const noe
     hit.v = 0.0f;
     hit.Ng = Ng;
     return true;
+}
+
+std::optional<ImplicitRoot> ImplicitShape::closedFormRoot(const Ray& ray, const DVec3& o,
+                                                          const DVec3& d, double t0,
+                                                          double t1) const noexcept {
+    double roots[4];
+    const int count = surface_->closedFormRoots(o, d, roots);
+    for (int i = 0; i < count; ++i) {
+        const float t = static_cast<float>(roots[i]);
+        if (roots[i] >= t0 && roots[i] <= t1 && t > ray.tnear && t < ray.tfar)
+            return ImplicitRoot{roots[i], 0.0};
+    }
+    return std::nullopt;
+}
+
+std::optional<ImplicitRoot> ImplicitShape::searchedRoot(const Ray& ray, const DVec3& o,
+                                                        const DVec3& d, double t0,
+                                                        double t1) const noexcept {
+    const double tolT = tolerance_ / glm::length(d);
+    const double tfar = std::min(t1, static_cast<double>(ray.tfar));
+    double from = std::max(t0, static_cast<double>(ray.tnear));
+    // A root whose float t rounds onto tnear or tfar is outside the open
+    // interval; search on past it (at most a few times: roots are isolated).
+    for (int attempt = 0; attempt < 4; ++attempt) {
+        const std::optional<ImplicitRoot> root = findFirstRoot(*surface_, o, d, from, tfar, tolT);
+        if (!root) return std::nullopt;
+        const float t = static_cast<float>(root->t);
+        if (t > ray.tnear && t < ray.tfar) return root;
+        if (t >= ray.tfar) return std::nullopt;
+        from = root->t + std::max(root->tError, tolT);
+    }
+    return std::nullopt;
 }
 
 SurfaceInteraction ImplicitShape::interaction(const Ray& ray, const Hit& hit) const {
@@ -207,6 +216,8 @@ SurfaceInteraction ImplicitShape::interaction(const Ray& ray, const Hit& hit) co
     si.materialSlot = 0;
     return si;
 }
+
+std::string ImplicitShape::describe() const { return "implicit " + surface_->describe(); }
 
 size_t ImplicitShape::memoryBytes() const {
     return sizeof(*this) + cells_.capacity() * sizeof(Cell) +

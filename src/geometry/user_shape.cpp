@@ -8,4 +8,11 @@ Bounds3 UserShape::bounds() const {
     return b;
 }
 
+std::vector<ShapeRef> meshShapeRefs(std::span<const TriangleMesh* const> meshes) {
+    std::vector<ShapeRef> refs;
+    refs.reserve(meshes.size());
+    for (const TriangleMesh* mesh : meshes) refs.push_back(ShapeRef{mesh, nullptr});
+    return refs;
+}
+
 }  // namespace strahl

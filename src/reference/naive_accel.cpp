@@ -109,21 +109,7 @@ private:
     template <int N>
     void intersectLanes(const int* valid, RayHitPacket<N>& packet) const {
         for (int lane = 0; lane < N; ++lane) {
-            if (valid[lane] != -1) continue;
-            const Hit hit = intersect(packet.ray(lane));
-            if (!hit.valid()) {
-                packet.geomID[lane] = kInvalidId;
-                continue;
-            }
-            packet.tfar[lane] = hit.t;
-            packet.u[lane] = hit.u;
-            packet.v[lane] = hit.v;
-            packet.Ng_x[lane] = hit.Ng.x;
-            packet.Ng_y[lane] = hit.Ng.y;
-            packet.Ng_z[lane] = hit.Ng.z;
-            packet.primID[lane] = hit.primID;
-            packet.geomID[lane] = hit.geomID;
-            packet.instID[lane] = kInvalidId;  // no instancing: what Embree writes too
+            if (valid[lane] == -1) packet.setHit(lane, intersect(packet.ray(lane)));
         }
     }
 
@@ -138,10 +124,7 @@ std::unique_ptr<Accel> buildNaiveAccel(std::span<const ShapeRef> shapes) {
 }
 
 std::unique_ptr<Accel> buildNaiveAccel(std::span<const TriangleMesh* const> meshes) {
-    std::vector<ShapeRef> shapes;
-    shapes.reserve(meshes.size());
-    for (const TriangleMesh* mesh : meshes) shapes.push_back(ShapeRef{mesh, nullptr});
-    return std::make_unique<NaiveAccel>(shapes);
+    return std::make_unique<NaiveAccel>(meshShapeRefs(meshes));
 }
 
 }  // namespace strahl

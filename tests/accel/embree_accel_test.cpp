@@ -6,18 +6,10 @@
 #include <gtest/gtest.h>
 
 #include "strahl/core/rng.h"
+#include "test_scene_pieces.h"
 
 namespace strahl {
 namespace {
-
-// A unit quad in the plane z = zPlane, two triangles, counter-clockwise seen from +z.
-TriangleMesh quad(float zPlane) {
-    TriangleMesh m;
-    m.positions = {{-1, -1, zPlane}, {1, -1, zPlane}, {1, 1, zPlane}, {-1, 1, zPlane}};
-    m.indices = {0, 1, 2, 0, 2, 3};
-    m.reservePadding();
-    return m;
-}
 
 TriangleMesh randomSoup(int triangles, uint64_t seed) {
     Pcg32 rng(seed, 1);
@@ -35,7 +27,7 @@ TriangleMesh randomSoup(int triangles, uint64_t seed) {
 }
 
 TEST(EmbreeAccel, FindsTheNearestOfTwoQuadsWithStableIds) {
-    const TriangleMesh front = quad(0.0f), back = quad(-1.0f);
+    const TriangleMesh front = test::unitQuad(0.0f), back = test::unitQuad(-1.0f);
     const TriangleMesh* meshes[] = {&back, &front};
     const auto accel = buildEmbreeAccel(meshes, {});
     Ray ray;
@@ -131,7 +123,7 @@ TEST(EmbreeAccel, Packets16MatchSingleRays) { expectPacketsMatchSingleRays<16>()
 TEST(EmbreeAccel, Packets8MatchSingleRays) { expectPacketsMatchSingleRays<8>(); }
 
 TEST(EmbreeAccel, NativeWidthIsAPacketWidth) {
-    const TriangleMesh q = quad(0.0f);
+    const TriangleMesh q = test::unitQuad(0.0f);
     const TriangleMesh* meshes[] = {&q};
     const int w = buildEmbreeAccel(meshes, {})->nativePacketWidth();
     EXPECT_TRUE(w == 16 || w == 8 || w == 1);

@@ -23,6 +23,8 @@
 #include "strahl/geometry/implicit_builtins.h"
 #include "strahl/geometry/implicit_shape.h"
 
+#include "test_scene_pieces.h"
+
 namespace strahl {
 namespace {
 
@@ -49,32 +51,21 @@ struct Scene {
                     return o;
                 }()),
           sphere(makeImplicitSphere(0.7), glm::translate(Mat4(1.0f), Vec3(1.2f, -0.3f, 0.5f)), {}) {
-        quad.positions = {{-3, -3, -2}, {3, -3, -2.5f}, {3, 3, -1.5f}, {-3, 3, -2}};
-        quad.indices = {0, 1, 2, 0, 2, 3};
-        quad.reservePadding();
+        quad = test::warpedBackdrop();
         refs = {ShapeRef{nullptr, &torus}, ShapeRef{&quad, nullptr}, ShapeRef{nullptr, &sphere}};
     }
 };
 
-// Rays from a sphere of radius 6 around the scene towards random points near
-// the shapes, most of which hit something.
+// Rays from around the scene towards points near the shapes, most of which
+// hit something.
 std::vector<Ray> randomRays(int count, uint64_t seed) {
-    Pcg32 rng(seed, 7);
-    auto uniform = [&](float lo, float hi) { return lo + (hi - lo) * rng.nextFloat(); };
-    std::vector<Ray> rays(static_cast<size_t>(count));
-    for (Ray& ray : rays) {
-        Vec3 from;
-        do {
-            from = Vec3(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
-        } while (glm::dot(from, from) > 1.0f || glm::dot(from, from) < 0.01f);
-        from = 6.0f * glm::normalize(from);
-        from.z = std::abs(from.z) + 1.0f;  // in front of the quad
-        const Vec3 to(uniform(-1.8f, 2.0f), uniform(-1.3f, 1.3f), uniform(-1.0f, 1.2f));
-        ray.origin = from;
-        // Not normalised: t is in units of |dir|, which the shapes must honour.
-        ray.dir = (to - from) * uniform(0.3f, 1.5f);
-    }
-    return rays;
+    test::RayFan fan;
+    fan.stream = 7;
+    fan.zLift = 1.0f;  // in front of the backdrop
+    fan.targetMin = Vec3(-1.8f, -1.3f, -1.0f);
+    fan.targetMax = Vec3(2.0f, 1.3f, 1.2f);
+    fan.scaleDirection = true;
+    return test::raysFromShell(count, seed, fan);
 }
 
 template <int N>

@@ -5,10 +5,7 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -25,7 +22,7 @@ using test::writeFile;
 
 using test::RunResult;
 
-RunResult run(const std::string& args) { return test::runStrahl(args); }
+using test::runStrahl;
 
 // No file at all in `dir` (neither the output nor a temporary).
 bool emptyDir(const fs::path& dir) { return fs::is_empty(dir); }
@@ -39,20 +36,20 @@ const std::string kQuad = R"({
 })";
 
 TEST(Cli, HelpDocumentsEveryRenderOption) {
-    const RunResult r = run("render --help");
+    const RunResult r = runStrahl("render --help");
     EXPECT_EQ(r.status, 0);
     for (const char* option : {"--output", "--width", "--height", "--spp", "--threads", "--integrator",
                                "--seed", "--crop", "--quiet", "--aov", "--exr-float", "--packets",
                                "--tile", "--ocio-config", "--display", "--view"})
         EXPECT_TRUE(contains(r.out, option)) << option;
-    EXPECT_EQ(run("--help").status, 0);
-    EXPECT_EQ(run("--version").status, 0);
+    EXPECT_EQ(runStrahl("--help").status, 0);
+    EXPECT_EQ(runStrahl("--version").status, 0);
 }
 
 TEST(Cli, RendersExrAndPngAndPrintsASummary) {
     const fs::path dir = test::scratchDir("cli-render");
     writeFile(dir / "quad.json", kQuad);
-    const RunResult r = run("render " + (dir / "quad.json").string() + " -o " + (dir / "a.exr").string() +
+    const RunResult r = runStrahl("render " + (dir / "quad.json").string() + " -o " + (dir / "a.exr").string() +
                             " -o " + (dir / "a.png").string() + " --aov depth");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_TRUE(fs::exists(dir / "a.exr"));
@@ -71,10 +68,10 @@ TEST(Cli, QuietPrintsNothingNotEvenMeshWarnings) {
     writeFile(dir / "tri.obj", "mtllib missing.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     writeFile(dir / "tri.json", R"({ "shapes": [ { "type": "mesh", "file": "tri.obj" } ] })");
     const std::string args = (dir / "tri.json").string() + " -o " + (dir / "a.exr").string();
-    const RunResult loud = run("render " + args);
+    const RunResult loud = runStrahl("render " + args);
     EXPECT_EQ(loud.status, 0) << loud.err;
     EXPECT_TRUE(contains(loud.err, "strahl: warning:")) << loud.err;
-    const RunResult quiet = run("render -q " + args);
+    const RunResult quiet = runStrahl("render -q " + args);
     EXPECT_EQ(quiet.status, 0);
     EXPECT_EQ(quiet.err, "");
 }
@@ -82,8 +79,8 @@ TEST(Cli, QuietPrintsNothingNotEvenMeshWarnings) {
 TEST(Cli, OneAndTwoThreadsGiveIdenticalPixels) {
     const fs::path dir = test::scratchDir("cli-threads");
     const std::string scene = (test::sourceDir() / "scenes/regression/quad_and_box.json").string();
-    ASSERT_EQ(run("render -q " + scene + " --exr-float --spp 3 --threads 1 -o " + (dir / "one.exr").string()).status, 0);
-    ASSERT_EQ(run("render -q " + scene + " --exr-float --spp 3 --threads 2 --tile 8 -o " + (dir / "two.exr").string()).status, 0);
+    ASSERT_EQ(runStrahl("render -q " + scene + " --exr-float --spp 3 --threads 1 -o " + (dir / "one.exr").string()).status, 0);
+    ASSERT_EQ(runStrahl("render -q " + scene + " --exr-float --spp 3 --threads 2 --tile 8 -o " + (dir / "two.exr").string()).status, 0);
     OIIO::ImageBuf a((dir / "one.exr").string()), b((dir / "two.exr").string());
     const auto cmp = OIIO::ImageBufAlgo::compare(a, b, 0.0f, 0.0f);
     EXPECT_FALSE(cmp.error);
@@ -113,7 +110,7 @@ TEST_P(CliBadInput, FailsWithOneClearMessageAndNoOutput) {
     writeFile(dir / "bad.json", p.sceneText);
     if (!p.extraFile.empty()) writeFile(dir / p.extraFile, p.extraText);
     const std::string output = p.args.find("-o ") != std::string::npos ? "" : " -o " + (outDir / "x.exr").string();
-    const RunResult r = run("render " + (dir / "bad.json").string() + output + " " + p.args);
+    const RunResult r = runStrahl("render " + (dir / "bad.json").string() + output + " " + p.args);
     EXPECT_EQ(r.status, p.status) << r.err;
     EXPECT_TRUE(contains(r.err, p.expectedInMessage)) << "stderr: " << r.err;
     if (p.status == 1) {
@@ -150,7 +147,7 @@ INSTANTIATE_TEST_SUITE_P(
     [](const auto& testInfo) { return std::string(testInfo.param.name); });
 
 TEST(Cli, InfoPrintsCountsBoundsAndMemory) {
-    const RunResult r = run("info " + (test::sourceDir() / "scenes/default.json").string());
+    const RunResult r = runStrahl("info " + (test::sourceDir() / "scenes/default.json").string());
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_TRUE(contains(r.out, "triangles  2188")) << r.out;
     EXPECT_TRUE(contains(r.out, "bounds"));
@@ -158,7 +155,7 @@ TEST(Cli, InfoPrintsCountsBoundsAndMemory) {
 }
 
 TEST(Cli, MissingSceneFileIsAnError) {
-    const RunResult r = run("info /nonexistent/scene.json");
+    const RunResult r = runStrahl("info /nonexistent/scene.json");
     EXPECT_EQ(r.status, 1);
     EXPECT_TRUE(contains(r.err, "/nonexistent/scene.json")) << r.err;
 }

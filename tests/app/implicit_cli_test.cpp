@@ -7,11 +7,8 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <sstream>
 
 #include "strahl/geometry/implicit_shape.h"
@@ -30,7 +27,7 @@ using test::writeFile;
 
 using test::RunResult;
 
-RunResult run(const std::string& args) { return test::runStrahl(args); }
+using test::runStrahl;
 
 // A small scene: a floor triangle pair, then `implicitShapes` (JSON objects,
 // comma-separated), lit by a point light.
@@ -74,7 +71,7 @@ TEST_P(ImplicitCliBadScene, ExitsWithOneMessageNamingFileAndShapeAndWritesNothin
     fs::create_directories(outDir);
     const fs::path file = dir / "bad.json";
     writeFile(file, scene(p.shape));
-    const RunResult r = run("render " + file.string() + " -o " + (outDir / "x.exr").string() +
+    const RunResult r = runStrahl("render " + file.string() + " -o " + (outDir / "x.exr").string() +
                             " -o " + (outDir / "x.png").string());
     EXPECT_EQ(r.status, 1) << r.err;
     EXPECT_EQ(r.err, "strahl: error: " + file.string() + ": " + p.expected + "\n");
@@ -82,7 +79,7 @@ TEST_P(ImplicitCliBadScene, ExitsWithOneMessageNamingFileAndShapeAndWritesNothin
     EXPECT_TRUE(fs::is_empty(outDir)) << "output left behind";
 
     // `info` reports the same problem the same way.
-    const RunResult info = run("info " + file.string());
+    const RunResult info = runStrahl("info " + file.string());
     EXPECT_EQ(info.status, 1);
     EXPECT_EQ(info.err, r.err);
 }
@@ -120,7 +117,7 @@ TEST(ImplicitCli, BuildErrorNamesTheShapeAndWritesNothing) {
               scene(R"({ "type": "implicit", "surface": { "type": "sphere" },
                          "box": [[5, 5, 5], [6, 6, 6]] })"));
     const RunResult r =
-        run("render " + (dir / "bad.json").string() + " -o " + (outDir / "x.exr").string());
+        runStrahl("render " + (dir / "bad.json").string() + " -o " + (outDir / "x.exr").string());
     EXPECT_EQ(r.status, 1);
     EXPECT_EQ(r.err,
               "strahl: error: bad.json: /shapes/1: the surface sphere r=1 has no point inside the "
@@ -133,10 +130,10 @@ TEST(ImplicitCli, NaiveAccelRendersTheSamePixelsAsEmbree) {
     const fs::path file = dir / "scene.json";
     writeFile(file, scene(kTorus + ",\n" + kFormula));
     const std::string common = "render -q " + file.string() + " --exr-float --threads 2 -o ";
-    const RunResult naive = run(common + (dir / "naive.exr").string() + " --accel naive");
+    const RunResult naive = runStrahl(common + (dir / "naive.exr").string() + " --accel naive");
     ASSERT_EQ(naive.status, 0) << naive.err;
     EXPECT_EQ(naive.err, "");
-    const RunResult embree = run(common + (dir / "embree.exr").string() + " --accel embree");
+    const RunResult embree = runStrahl(common + (dir / "embree.exr").string() + " --accel embree");
     ASSERT_EQ(embree.status, 0) << embree.err;
     OIIO::ImageBuf a((dir / "naive.exr").string()), b((dir / "embree.exr").string());
     // The implicit shapes run the same code in both tracers; the floor mesh
@@ -162,7 +159,7 @@ TEST(ImplicitCli, UnknownAccelIsAUsageError) {
     const fs::path outDir = dir / "out";
     fs::create_directories(outDir);
     writeFile(dir / "scene.json", scene(kTorus));
-    const RunResult r = run("render " + (dir / "scene.json").string() + " --accel bogus -o " +
+    const RunResult r = runStrahl("render " + (dir / "scene.json").string() + " --accel bogus -o " +
                             (outDir / "x.exr").string());
     EXPECT_EQ(r.status, 2);
     EXPECT_TRUE(contains(r.err, "--accel")) << r.err;
@@ -174,7 +171,7 @@ TEST(ImplicitCli, InfoListsImplicitShapesWithTheirCellCounts) {
     const fs::path dir = test::scratchDir("implicit-cli-info");
     const fs::path file = dir / "scene.json";
     writeFile(file, scene(kTorus + ",\n" + kFormula));
-    const RunResult r = run("info " + file.string());
+    const RunResult r = runStrahl("info " + file.string());
     ASSERT_EQ(r.status, 0) << r.err;
 
     // The counts the builder makes of the same scene.

@@ -21,6 +21,8 @@
 #include "strahl/geometry/implicit_shape.h"
 #include "strahl/reference/naive_accel.h"
 
+#include "test_scene_pieces.h"
+
 namespace strahl {
 namespace {
 
@@ -52,29 +54,19 @@ struct Scene {
     std::vector<ShapeRef> refs;
 
     Scene() {
-        quad.positions = {{-3, -3, -2}, {3, -3, -2.5f}, {3, 3, -1.5f}, {-3, 3, -2}};
-        quad.indices = {0, 1, 2, 0, 2, 3};
-        quad.reservePadding();
+        quad = test::warpedBackdrop();
         refs = {ShapeRef{nullptr, &torus},  ShapeRef{&quad, nullptr},   ShapeRef{nullptr, &sphere},
                 ShapeRef{nullptr, &blobs},  ShapeRef{nullptr, &gyroid}, ShapeRef{nullptr, &formula}};
     }
 };
 
 std::vector<Ray> randomRays(int count, uint64_t seed) {
-    Pcg32 rng(seed, 11);
-    auto uniform = [&](float lo, float hi) { return lo + (hi - lo) * rng.nextFloat(); };
-    std::vector<Ray> rays(static_cast<size_t>(count));
-    for (Ray& ray : rays) {
-        Vec3 from;
-        do {
-            from = Vec3(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
-        } while (glm::dot(from, from) > 1.0f || glm::dot(from, from) < 0.01f);
-        from = 6.0f * glm::normalize(from);
-        from.z = std::abs(from.z) + 0.5f;
-        ray.origin = from;
-        ray.dir = Vec3(uniform(-2.2f, 2.2f), uniform(-2.0f, 2.0f), uniform(-1.0f, 1.2f)) - from;
-    }
-    return rays;
+    test::RayFan fan;
+    fan.stream = 11;
+    fan.zLift = 0.5f;
+    fan.targetMin = Vec3(-2.2f, -2.0f, -1.0f);
+    fan.targetMax = Vec3(2.2f, 2.0f, 1.2f);
+    return test::raysFromShell(count, seed, fan);
 }
 
 TEST(ImplicitAccelAgreement, NaiveAndEmbreeFindTheSameHits) {

@@ -16,6 +16,7 @@
 
 #include "strahl/core/rng.h"
 #include "strahl/reference/watertight_triangle.h"
+#include "test_scene_pieces.h"
 
 namespace strahl {
 namespace {
@@ -23,15 +24,6 @@ namespace {
 // ---------------------------------------------------------------------------
 // Scene pieces built in the test.
 
-// A unit quad in the plane z = zPlane, two triangles, counter-clockwise seen
-// from +z; its diagonal runs from (-1, -1) to (1, 1).
-TriangleMesh quad(float zPlane) {
-    TriangleMesh m;
-    m.positions = {{-1, -1, zPlane}, {1, -1, zPlane}, {1, 1, zPlane}, {-1, 1, zPlane}};
-    m.indices = {0, 1, 2, 0, 2, 3};
-    m.reservePadding();
-    return m;
-}
 
 // A box with half-extents `halfSize` along a tilted orthonormal frame, 12
 // triangles wound outwards.
@@ -630,7 +622,7 @@ TEST(NaiveAccel, Packets16MatchSingleRays) {
 // User shapes, nearest hit across shape kinds, ties.
 
 TEST(NaiveAccel, CallsUserShapesAndPicksTheNearestAcrossKinds) {
-    const TriangleMesh plane = quad(0.0f);           // geomID 0
+    const TriangleMesh plane = test::unitQuad(0.0f);           // geomID 0
     const SphereSet balls({{{0, 0, -3}, 1.0f},       // primID 0: behind the quad
                            {{3, 0, 0}, 0.5f},        // primID 1: beside it
                            {{0, 0.5f, 2}, 0.25f}});  // primID 2: in front of it
@@ -672,7 +664,7 @@ TEST(NaiveAccel, CallsUserShapesAndPicksTheNearestAcrossKinds) {
 }
 
 TEST(NaiveAccel, EmbreeAgreesOnUserShapesAndNearestAcrossKinds) {
-    const TriangleMesh plane = quad(0.0f);
+    const TriangleMesh plane = test::unitQuad(0.0f);
     const SphereSet balls({{{0, 0, -3}, 1.0f}, {{3, 0, 0}, 0.5f}, {{0, 0.5f, 2}, 0.25f}});
     const std::vector<ShapeRef> shapes = {{&plane, nullptr}, {nullptr, &balls}};
     const auto naive = buildNaiveAccel(shapes);
@@ -696,7 +688,7 @@ TEST(NaiveAccel, EmbreeAgreesOnUserShapesAndNearestAcrossKinds) {
 }
 
 TEST(NaiveAccel, TiesKeepTheFirstHitFound) {
-    const TriangleMesh first = quad(0.0f), copy = quad(0.0f);
+    const TriangleMesh first = test::unitQuad(0.0f), copy = test::unitQuad(0.0f);
     const std::vector<ShapeRef> meshes = meshRefs({&first, &copy});
     const auto naive = buildNaiveAccel(meshes);
     // On the diagonal both triangles of both quads are hit at exactly t = 1.
@@ -715,7 +707,7 @@ TEST(NaiveAccel, TiesKeepTheFirstHitFound) {
 }
 
 TEST(NaiveAccel, BoundsWidthAndMemory) {
-    const TriangleMesh low = quad(-2.0f);
+    const TriangleMesh low = test::unitQuad(-2.0f);
     const TriangleMesh soup = randomSoup(5000, Vec3(0.0f), 1);
     const SphereSet ball({{{0, 0, 10}, 1.0f}});
     const std::vector<ShapeRef> shapes = {{&low, nullptr}, {&soup, nullptr}, {nullptr, &ball}};

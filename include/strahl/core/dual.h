@@ -114,14 +114,10 @@ Dual<T, N> min(const Dual<T, N>& a, const Dual<T, N>& b) {
     return r;
 }
 
+// max(a, b) = −min(−a, −b): negation is exact in both arithmetics.
 template <class T, int N>
 Dual<T, N> max(const Dual<T, N>& a, const Dual<T, N>& b) {
-    if (certainlyLessEqual(b.v, a.v)) return a;
-    if (certainlyLessEqual(a.v, b.v)) return b;
-    Dual<T, N> r;
-    r.v = max(a.v, b.v);
-    for (int i = 0; i < N; ++i) r.d[i] = hull(a.d[i], b.d[i]);
-    return r;
+    return -min(-a, -b);
 }
 
 template <class T, int N>

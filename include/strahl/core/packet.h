@@ -55,6 +55,20 @@ struct alignas(64) RayHitPacket {
         r.tfar = tfar[lane];
         return r;
     }
+    // Writes a lane's hit as Embree would: a miss sets only geomID (tfar and
+    // the rest of the lane stay as they were).
+    void setHit(int lane, const Hit& h) {
+        geomID[lane] = h.geomID;
+        if (!h.valid()) return;
+        tfar[lane] = h.t;
+        u[lane] = h.u;
+        v[lane] = h.v;
+        Ng_x[lane] = h.Ng.x;
+        Ng_y[lane] = h.Ng.y;
+        Ng_z[lane] = h.Ng.z;
+        primID[lane] = h.primID;
+        instID[lane] = kInvalidId;  // no instancing
+    }
     Hit hit(int lane) const {
         Hit h;
         if (geomID[lane] == kInvalidId) return h;

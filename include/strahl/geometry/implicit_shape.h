@@ -18,11 +18,13 @@
 // a cone) the normal faces the incoming ray instead: never NaN.
 
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
 
+#include "strahl/geometry/implicit_root_finder.h"
 #include "strahl/geometry/implicit_surface.h"
 #include "strahl/geometry/user_shape.h"
 
@@ -48,6 +50,9 @@ public:
     Bounds3 primitiveBounds(uint32_t prim) const override { return worldBounds_[prim]; }
     bool intersect(const Ray& ray, uint32_t prim, Hit& hit) const noexcept override;
     SurfaceInteraction interaction(const Ray& ray, const Hit& hit) const override;
+    Bounds3 bounds() const override { return bounds_; }
+    std::string describe() const override;
+    const char* primitiveNoun() const override { return "cells"; }
     size_t memoryBytes() const override;
 
     const ImplicitSurface& surface() const { return *surface_; }
@@ -62,6 +67,14 @@ private:
         DVec3 min, max;  // object space
     };
 
+    // The first closed-form root inside the cell's [t0, t1] and the ray's
+    // (tnear, tfar), its error still to be estimated.
+    std::optional<ImplicitRoot> closedFormRoot(const Ray& ray, const DVec3& o, const DVec3& d,
+                                               double t0, double t1) const noexcept;
+    // The first root findFirstRoot() finds there, to the shape's tolerance.
+    std::optional<ImplicitRoot> searchedRoot(const Ray& ray, const DVec3& o, const DVec3& d,
+                                             double t0, double t1) const noexcept;
+
     ImplicitSurfacePtr surface_;
     glm::dmat4 toObject_;
     glm::dmat3 toWorldLinear_, normalToWorld_;
@@ -70,6 +83,7 @@ private:
     bool closedForm_ = false;
     std::vector<Cell> cells_;
     std::vector<Bounds3> worldBounds_;
+    Bounds3 bounds_;  // union of worldBounds_
 };
 
 }  // namespace strahl

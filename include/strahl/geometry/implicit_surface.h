@@ -54,11 +54,13 @@ public:
     // The gradient: by hand for built-ins, else automatic differentiation.
     virtual DVec3 gradient(const DVec3& x) const { return automaticGradient(x); }
 
-    // Closed-form ray roots, for shapes that have them (sphere, quadric): the
-    // roots of f(o + t·d) in increasing order, or -1 if the shape has no closed
-    // form and the generic root finder must be used.
+    // Whether the ray roots have a closed form (sphere, quadric); if not, the
+    // generic root finder is used.
+    virtual bool hasClosedForm() const { return false; }
+    // With a closed form: the real roots of f(o + t·d) in increasing order, and
+    // how many there are.
     virtual int closedFormRoots(const DVec3& /*o*/, const DVec3& /*d*/, double /*roots*/[4]) const {
-        return -1;
+        return 0;
     }
 
     // A short description for messages and `strahl info`, e.g. "torus R=1 r=0.25".

@@ -17,6 +17,9 @@
 // noexcept.
 
 #include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
 
 #include "strahl/core/bounds.h"
 #include "strahl/core/ray.h"
@@ -48,6 +51,10 @@ public:
 
     // Union of the primitive boxes.
     virtual Bounds3 bounds() const;
+    // For messages and `strahl info`: what the shape is ("implicit torus R=1
+    // r=0.25") and what its primitives are called ("cells").
+    virtual std::string describe() const { return "user shape"; }
+    virtual const char* primitiveNoun() const { return "primitives"; }
     // Bytes held by the shape (its own tables, not counting the accelerator).
     virtual size_t memoryBytes() const = 0;
 };
@@ -60,5 +67,8 @@ struct ShapeRef {
 
     Bounds3 bounds() const { return mesh ? mesh->bounds() : user->bounds(); }
 };
+
+// The list for a scene of meshes only.
+std::vector<ShapeRef> meshShapeRefs(std::span<const TriangleMesh* const> meshes);
 
 }  // namespace strahl
