@@ -33,6 +33,28 @@ DVec3 randomDirection(std::mt19937& rng) {
     }
 }
 
+// A ray from a random point at `distance` from the origin towards a random
+// point of the cube [-extent, extent]³.
+Ray rayTowards(std::mt19937& rng, double distance, double extent) {
+    Ray ray;
+    ray.origin = Vec3(randomDirection(rng) * distance);
+    ray.dir = Vec3(glm::normalize(randomPoint(rng, extent) - DVec3(ray.origin)));
+    return ray;
+}
+
+// The nearest hit over all of a shape's cells, as an accelerator would find
+// it: each cell is asked with tfar shrunk to the best hit so far.
+Hit nearestHit(const ImplicitShape& shape, const Ray& ray) {
+    Hit best;
+    for (uint32_t prim = 0; prim < shape.primitiveCount(); ++prim) {
+        Ray clipped = ray;
+        clipped.tfar = best.t;
+        Hit hit;
+        if (shape.intersect(clipped, prim, hit)) best = hit;
+    }
+    return best;
+}
+
 // Every built-in (and CSG, formula) with a point scale for sampling.
 struct Named {
     std::string name;
@@ -142,8 +164,7 @@ TEST(ImplicitShape, SphereAgreesWithAnalyticSphere) {
         Ray ray;
         const int kind = i % 3;
         if (kind == 0) {  // from outside, aimed near the sphere
-            ray.origin = Vec3(randomDirection(rng) * 4.0);
-            ray.dir = Vec3(glm::normalize(randomPoint(rng, 1.0) - DVec3(ray.origin)));
+            ray = rayTowards(rng, 4.0, 1.0);
         } else if (kind == 1) {  // from inside
             ray.origin = Vec3(randomPoint(rng, 0.5));
             ray.dir = Vec3(randomDirection(rng));
@@ -187,21 +208,13 @@ TEST(ImplicitShape, ThinShellIsNotMissed) {
     std::mt19937 rng(5);
     int tested = 0;
     for (int i = 0; i < 5000; ++i) {
-        Ray ray;
-        ray.origin = Vec3(randomDirection(rng) * 3.0);
-        ray.dir = Vec3(glm::normalize(randomPoint(rng, 0.9) - DVec3(ray.origin)));
+        const Ray ray = rayTowards(rng, 3.0, 0.9);
         // The shell's outer face is the sphere |x|² = 1 + 1e-5.
         const auto expected =
             analyticSphere(DVec3(ray.origin), DVec3(ray.dir), std::sqrt(1.0 + 1e-5), 0.0);
         if (!expected) continue;
         ++tested;
-        float nearest = kInfinity;
-        for (uint32_t prim = 0; prim < shell.primitiveCount(); ++prim) {
-            Ray clipped = ray;
-            clipped.tfar = nearest;
-            Hit hit;
-            if (shell.intersect(clipped, prim, hit)) nearest = hit.t;
-        }
+        const float nearest = nearestHit(shell, ray).t;
         ASSERT_NEAR(nearest, static_cast<double>(*expected), 1e-5) << "ray " << i;
     }
     EXPECT_GT(tested, 4000);
@@ -219,9 +232,7 @@ TEST(ImplicitShape, ScaleSweep) {
             makeFormulaSurface("x^2 + y^2 + z^2 - r^2", {{"r", r}}), Mat4(1.0f), options);
         for (double distance : {3.0, 100.0, 1e4}) {
             for (int i = 0; i < 300; ++i) {
-                Ray ray;
-                ray.origin = Vec3(randomDirection(rng) * distance * r);
-                ray.dir = Vec3(glm::normalize(randomPoint(rng, 0.5 * r) - DVec3(ray.origin)));
+                const Ray ray = rayTowards(rng, distance * r, 0.5 * r);
                 const auto expected = analyticSphere(DVec3(ray.origin), DVec3(ray.dir), r, 0.0);
                 ASSERT_TRUE(expected) << "r " << r << " distance " << distance;
                 for (const ImplicitShape* shape : {&sphere, &formula}) {
@@ -249,16 +260,8 @@ TEST(ImplicitShape, SpawnedRaysDoNotReintersect) {
     std::mt19937 rng(7);
     int checked = 0;
     for (int i = 0; i < 3000; ++i) {
-        Ray ray;
-        ray.origin = Vec3(randomDirection(rng) * 4.0);
-        ray.dir = Vec3(glm::normalize(randomPoint(rng, 1.2) - DVec3(ray.origin)));
-        Hit best;
-        for (uint32_t prim = 0; prim < torus.primitiveCount(); ++prim) {
-            Ray clipped = ray;
-            clipped.tfar = best.t;
-            Hit hit;
-            if (torus.intersect(clipped, prim, hit)) best = hit;
-        }
+        const Ray ray = rayTowards(rng, 4.0, 1.2);
+        const Hit best = nearestHit(torus, ray);
         if (!(best.t < kInfinity)) continue;
         const SurfaceInteraction si = torus.interaction(ray, best);
         // Reflect: the new ray leaves the surface on the side it came from.
