@@ -2,7 +2,10 @@
 // Geometry that several accelerator tests build their scenes from: small
 // meshes and fans of random rays shot at a scene from a shell around it.
 
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <utility>
 #include <vector>
 
 #include "strahl/core/ray.h"
@@ -17,6 +20,44 @@ inline TriangleMesh unitQuad(float zPlane) {
     TriangleMesh m;
     m.positions = {{-1, -1, zPlane}, {1, -1, zPlane}, {1, 1, zPlane}, {-1, 1, zPlane}};
     m.indices = {0, 1, 2, 0, 2, 3};
+    m.reservePadding();
+    return m;
+}
+
+// A subdivided icosahedron projected onto a sphere: 20 * 4^level triangles,
+// closed, every edge shared by two triangles, irregular float coordinates.
+inline TriangleMesh icosphere(int level, const Vec3& centre, float radius) {
+    const float g = (1.0f + std::sqrt(5.0f)) / 2.0f;
+    std::vector<Vec3> unit = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0},
+                              {0, -1, g}, {0, 1, g}, {0, -1, -g}, {0, 1, -g},
+                              {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+    for (Vec3& p : unit) p = glm::normalize(p);
+    std::vector<uint32_t> tris = {0, 11, 5, 0, 5,  1,  0,  1,  7,  0,  7, 10, 0, 10, 11,
+                                  1, 5,  9, 5, 11, 4,  11, 10, 2,  10, 7, 6,  7, 1,  8,
+                                  3, 9,  4, 3, 4,  2,  3,  2,  6,  3,  6, 8,  3, 8,  9,
+                                  4, 9,  5, 2, 4,  11, 6,  2,  10, 8,  6, 7,  9, 8,  1};
+    for (int l = 0; l < level; ++l) {
+        std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoints;
+        auto midpoint = [&](uint32_t a, uint32_t b) {
+            const auto key = std::minmax(a, b);
+            const auto found = midpoints.find(key);
+            if (found != midpoints.end()) return found->second;
+            unit.push_back(glm::normalize(unit[a] + unit[b]));
+            const auto index = static_cast<uint32_t>(unit.size() - 1);
+            midpoints.emplace(key, index);
+            return index;
+        };
+        std::vector<uint32_t> finer;
+        for (size_t t = 0; t < tris.size(); t += 3) {
+            const uint32_t a = tris[t], b = tris[t + 1], c = tris[t + 2];
+            const uint32_t ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+            finer.insert(finer.end(), {a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca});
+        }
+        tris = std::move(finer);
+    }
+    TriangleMesh m;
+    for (const Vec3& p : unit) m.positions.push_back(centre + radius * p);
+    m.indices = std::move(tris);
     m.reservePadding();
     return m;
 }

@@ -1,8 +1,13 @@
 // EmbreeAccel: triangle meshes and user shapes in one Embree 3 scene.
 //
 // Invariants:
-//  - geomID == index of the shape in the span handed to buildEmbreeAccel
-//    (rtcAttachGeometryByID), so shading finds a hit's shape without a map.
+//  - geomID == index of the shape in its list (rtcAttachGeometryByID): the
+//    top-level list or a prototype's, so shading finds a hit's shape without a
+//    map. Instance k is attached to the top level as shapes.size() + k, which
+//    Embree reports as instID.
+//  - Each prototype is its own Embree scene with its own BVH, built once and
+//    referenced by RTC_GEOMETRY_TYPE_INSTANCE geometries (one level: the build
+//    has RTC_MAX_INSTANCE_LEVEL_COUNT == 1).
 //  - Every UserShape goes through one generic user-geometry adapter (the
 //    callbacks below), following the Embree 3 contract of ../shared/GUIDE.md §3:
 //    callbacks handle any packet width N, read valid[] only, accept a hit only
@@ -28,6 +33,7 @@
 #include "embree_scene.h"
 #include "strahl/accel/accel.h"
 #include "strahl/core/error.h"
+#include "strahl/core/transform.h"
 
 namespace strahl {
 
@@ -97,19 +103,53 @@ void userOccluded(const RTCOccludedFunctionNArguments* args) {
 
 class EmbreeAccel final : public EmbreeSceneAccel {
 public:
-    EmbreeAccel(std::span<const ShapeRef> shapes, const AccelBuildOptions& options)
+    EmbreeAccel(const AccelScene& scene, const AccelBuildOptions& options)
         : EmbreeSceneAccel(options) {
-        for (size_t i = 0; i < shapes.size(); ++i) {
-            if (shapes[i].mesh)
-                attachMesh(*shapes[i].mesh, static_cast<unsigned>(i));
-            else
-                attachUserShape(*shapes[i].user, static_cast<unsigned>(i));
+        for (size_t i = 0; i < scene.shapes.size(); ++i) {
+            const RTCGeometry geom = newShapeGeometry(scene.shapes[i], static_cast<unsigned>(i));
+            attach(geom, static_cast<unsigned>(i), scene.shapes[i].bounds(), "adding a shape");
+        }
+
+        std::vector<RTCScene> prototypes;
+        std::vector<Bounds3> prototypeBounds;
+        for (const std::vector<ShapeRef>& shapes : scene.prototypes) {
+            RTCScene prototype = newPrototypeScene();
+            Bounds3 bounds;
+            for (size_t i = 0; i < shapes.size(); ++i) {
+                const RTCGeometry geom = newShapeGeometry(shapes[i], static_cast<unsigned>(i));
+                attachTo(prototype, geom, static_cast<unsigned>(i), "adding a prototype's shape");
+                bounds.expand(shapes[i].bounds());
+            }
+            commitPrototype(prototype);
+            prototypes.push_back(prototype);
+            prototypeBounds.push_back(bounds);
+        }
+
+        for (size_t k = 0; k < scene.instances.size(); ++k) {
+            const AccelInstance& instance = scene.instances[k];
+            if (instance.prototype >= prototypes.size())
+                fail("instance ", k, ": prototype ", instance.prototype, " does not exist (",
+                     prototypes.size(), " prototypes)");
+            RTCGeometry geom = rtcNewGeometry(device(), RTC_GEOMETRY_TYPE_INSTANCE);
+            rtcSetGeometryInstancedScene(geom, prototypes[instance.prototype]);
+            // glm::mat4 is column-major with the affine last row 0 0 0 1.
+            rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR,
+                                    &instance.objectToWorld[0][0]);
+            attach(geom, scene.instanceId(k),
+                   transformBounds(instance.objectToWorld, prototypeBounds[instance.prototype]),
+                   "adding an instance");
         }
         commit();
     }
 
 private:
-    void attachMesh(const TriangleMesh& mesh, unsigned geomID) {
+    // The Embree geometry of one shape, not yet committed or attached. `geomID`
+    // only names the shape in errors.
+    RTCGeometry newShapeGeometry(const ShapeRef& shape, unsigned geomID) {
+        return shape.mesh ? newMeshGeometry(*shape.mesh) : newUserGeometry(*shape.user, geomID);
+    }
+
+    RTCGeometry newMeshGeometry(const TriangleMesh& mesh) {
         RTCGeometry geom = rtcNewGeometry(device(), RTC_GEOMETRY_TYPE_TRIANGLE);
         const size_t nv = mesh.vertexCount(), nt = mesh.triangleCount();
         if (mesh.isPadded()) {
@@ -122,19 +162,17 @@ private:
         }
         rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                    mesh.indices.data(), 0, 3 * sizeof(uint32_t), nt);
-        attach(geom, geomID, mesh.bounds(), "adding a triangle mesh");
+        return geom;
     }
 
-    void attachUserShape(const UserShape& shape, unsigned geomID) {
+    RTCGeometry newUserGeometry(const UserShape& shape, unsigned geomID) {
         // Embree silently drops or mistraverses primitives with NaN or empty
-        // boxes: check them all, and take their union on the way.
+        // boxes: check them all first.
         const uint32_t count = shape.primitiveCount();
-        Bounds3 all;
         for (uint32_t prim = 0; prim < count; ++prim) {
             const Bounds3 b = shape.primitiveBounds(prim);
             if (b.empty() || !isFinite(b.min) || !isFinite(b.max))
                 fail("shape ", geomID, ": primitive ", prim, " has no finite bounds");
-            all.expand(b);
         }
         RTCGeometry geom = rtcNewGeometry(device(), RTC_GEOMETRY_TYPE_USER);
         rtcSetGeometryUserPrimitiveCount(geom, count);
@@ -142,20 +180,24 @@ private:
         rtcSetGeometryBoundsFunction(geom, &userBounds, nullptr);
         rtcSetGeometryIntersectFunction(geom, &userIntersect);
         rtcSetGeometryOccludedFunction(geom, &userOccluded);
-        attach(geom, geomID, all, "adding a user shape");
+        return geom;
     }
 };
 
 }  // namespace
 
+std::unique_ptr<Accel> buildEmbreeAccel(const AccelScene& scene, const AccelBuildOptions& options) {
+    return std::make_unique<EmbreeAccel>(scene, options);
+}
+
 std::unique_ptr<Accel> buildEmbreeAccel(std::span<const ShapeRef> shapes,
                                         const AccelBuildOptions& options) {
-    return std::make_unique<EmbreeAccel>(shapes, options);
+    return buildEmbreeAccel(AccelScene{{shapes.begin(), shapes.end()}, {}, {}}, options);
 }
 
 std::unique_ptr<Accel> buildEmbreeAccel(std::span<const TriangleMesh* const> meshes,
                                         const AccelBuildOptions& options) {
-    return std::make_unique<EmbreeAccel>(meshShapeRefs(meshes), options);
+    return buildEmbreeAccel(meshShapeRefs(meshes), options);
 }
 
 const char* embreeVersion() { return RTC_VERSION_STRING; }

@@ -75,15 +75,35 @@ EmbreeSceneAccel::EmbreeSceneAccel(const AccelBuildOptions& options)
 
 EmbreeSceneAccel::~EmbreeSceneAccel() {
     if (scene_) rtcReleaseScene(scene_);
+    for (RTCScene prototype : prototypes_) rtcReleaseScene(prototype);
 }
 
 void EmbreeSceneAccel::attach(RTCGeometry geometry, unsigned geomID, const Bounds3& bounds,
                               const char* what) {
+    attachTo(scene_, geometry, geomID, what);
+    bounds_.expand(bounds);
+}
+
+void EmbreeSceneAccel::attachTo(RTCScene scene, RTCGeometry geometry, unsigned geomID,
+                                const char* what) {
     rtcCommitGeometry(geometry);
-    rtcAttachGeometryByID(scene_, geometry, geomID);
+    rtcAttachGeometryByID(scene, geometry, geomID);
     rtcReleaseGeometry(geometry);
     device_.check(what);
-    bounds_.expand(bounds);
+}
+
+RTCScene EmbreeSceneAccel::newPrototypeScene() {
+    prototypes_.reserve(prototypes_.size() + 1);  // so push_back cannot throw and leak
+    RTCScene scene = rtcNewScene(device_.handle());
+    device_.check("creating a prototype scene");
+    rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_MEDIUM);
+    prototypes_.push_back(scene);
+    return scene;
+}
+
+void EmbreeSceneAccel::commitPrototype(RTCScene scene) {
+    rtcCommitScene(scene);
+    device_.check("building a prototype's BVH");
 }
 
 void EmbreeSceneAccel::commit() {
@@ -103,6 +123,7 @@ Hit EmbreeSceneAccel::intersect(const Ray& ray) const {
     hit.Ng = Vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
     hit.geomID = rh.hit.geomID;
     hit.primID = rh.hit.primID;
+    hit.instID = rh.hit.instID[0];
     return hit;
 }
 

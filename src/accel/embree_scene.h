@@ -17,6 +17,7 @@
 #include <embree3/rtcore.h>
 
 #include <functional>
+#include <vector>
 
 #include "embree_device.h"
 #include "strahl/accel/accel.h"
@@ -43,9 +44,17 @@ protected:
     explicit EmbreeSceneAccel(const AccelBuildOptions& options);
 
     RTCDevice device() const { return device_.handle(); }
-    // Commits `geometry`, attaches it as `geomID`, drops the caller's reference
-    // and throws strahl::Error "Embree: <what>: ..." if Embree reported an error.
+    // Commits `geometry`, attaches it to the top-level scene as `geomID`, drops
+    // the caller's reference and throws strahl::Error "Embree: <what>: ..." if
+    // Embree reported an error.
     void attach(RTCGeometry geometry, unsigned geomID, const Bounds3& bounds, const char* what);
+    // The same into another scene (an instanced prototype); bounds not tracked.
+    void attachTo(RTCScene scene, RTCGeometry geometry, unsigned geomID, const char* what);
+    // A new empty scene with the top-level scene's build settings, owned (and
+    // released) by this accelerator, for prototypes that instances place.
+    RTCScene newPrototypeScene();
+    // Builds a prototype scene's BVH.
+    void commitPrototype(RTCScene scene);
     // Builds the BVH over everything attached.
     void commit();
 
@@ -55,6 +64,7 @@ private:
     EmbreeDevice device_;
     std::function<void(double)> progress_;
     RTCScene scene_ = nullptr;
+    std::vector<RTCScene> prototypes_;
     Bounds3 bounds_;
 };
 

@@ -129,6 +129,27 @@ int runRender(const Options& o) {
     return 0;
 }
 
+namespace {
+
+// One line per shape: its index (the geomID within its list), name and size.
+void printShapes(const std::vector<SceneShape>& shapes, const char* indent) {
+    for (size_t i = 0; i < shapes.size(); ++i) {
+        const SceneShape& shape = shapes[i];
+        if (shape.user) {
+            std::printf("%s[%zu] %-24s %10u %-9s %s\n", indent, i, shape.name.c_str(),
+                        shape.user->primitiveCount(), shape.user->primitiveNoun(),
+                        shape.user->describe().c_str());
+            continue;
+        }
+        const TriangleMesh& m = shape.mesh;
+        std::printf("%s[%zu] %-24s %10zu triangles %10zu vertices%s%s\n", indent, i,
+                    shape.name.c_str(), m.triangleCount(), m.vertexCount(),
+                    m.normals.empty() ? "" : " normals", m.uvs.empty() ? "" : " uvs");
+    }
+}
+
+}  // namespace
+
 int runInfo(const Options& o) {
     const SceneDesc desc = parseSceneFile(o.scene);
     BuildTimings timings;
@@ -136,20 +157,22 @@ int runInfo(const Options& o) {
     const Bounds3 b = world.bounds();
     std::printf("scene      %s\n", desc.file.string().c_str());
     std::printf("shapes     %zu\n", world.shapes.size());
-    for (size_t i = 0; i < world.shapes.size(); ++i) {
-        const SceneShape& shape = world.shapes[i];
-        if (shape.user) {
-            std::printf("  [%zu] %-24s %10u %-9s %s\n", i, shape.name.c_str(),
-                        shape.user->primitiveCount(), shape.user->primitiveNoun(),
-                        shape.user->describe().c_str());
-            continue;
+    printShapes(world.shapes, "  ");
+    if (!world.prototypes.empty()) {
+        std::vector<size_t> placements(world.prototypes.size(), 0);
+        for (const SceneInstance& instance : world.instances) ++placements[instance.prototype];
+        std::printf("groups     %zu, %zu instances\n", world.prototypes.size(),
+                    world.instances.size());
+        for (size_t p = 0; p < world.prototypes.size(); ++p) {
+            std::printf("  group '%s', placed %zu times\n", world.prototypes[p].name.c_str(),
+                        placements[p]);
+            printShapes(world.prototypes[p].shapes, "    ");
         }
-        const TriangleMesh& m = shape.mesh;
-        std::printf("  [%zu] %-24s %10zu triangles %10zu vertices%s%s\n", i, shape.name.c_str(),
-                    m.triangleCount(), m.vertexCount(), m.normals.empty() ? "" : " normals",
-                    m.uvs.empty() ? "" : " uvs");
     }
-    std::printf("triangles  %zu\n", world.triangleCount());
+    std::printf("triangles  %zu", world.triangleCount());
+    if (!world.instances.empty())
+        std::printf(" stored, %zu instanced", world.instancedTriangleCount());
+    std::printf("\n");
     std::printf("user prims %zu\n", world.userPrimitiveCount());
     std::printf("materials  %zu\n", world.materials.size());
     std::printf("lights     %zu\n", world.lights.size());

@@ -28,7 +28,11 @@ Color DepthIntegrator::shade(const World&, const SurfaceHit& hit, SampleRng&, Sh
 
 Color PrimIdIntegrator::shade(const World&, const SurfaceHit& hit, SampleRng&,
                               ShadingStats&) const {
-    const uint64_t h = mixBits((uint64_t(hit.hit().geomID) << 32) | hit.hit().primID);
+    // Instances of one prototype get different colours: the instance ID is
+    // mixed in (top-level shapes keep the plain (geomID, primID) hash).
+    const Hit& id = hit.hit();
+    const uint64_t instance = id.instID == kInvalidId ? 0 : mixBits(id.instID);
+    const uint64_t h = mixBits(((uint64_t(id.geomID) << 32) | id.primID) ^ instance);
     // Three 8-bit channels of the hash, kept away from black (0.15..1) so every
     // primitive is visible.
     auto channel = [h](int shift) { return 0.15f + 0.85f * float((h >> shift) & 0xFF) / 255.0f; };

@@ -1,36 +1,109 @@
 #include "strahl/integrator/world.h"
 
+#include "strahl/core/transform.h"
+
 namespace strahl {
 
-Bounds3 World::bounds() const {
-    Bounds3 b;
-    for (const SceneShape& s : shapes) b.expand(s.ref().bounds());
-    return b;
-}
+namespace {
 
-std::vector<ShapeRef> World::shapeRefs() const {
-    std::vector<ShapeRef> refs;
-    refs.reserve(shapes.size());
-    for (const SceneShape& s : shapes) refs.push_back(s.ref());
-    return refs;
-}
-
-size_t World::triangleCount() const {
+size_t trianglesOf(const std::vector<SceneShape>& shapes) {
     size_t n = 0;
     for (const SceneShape& s : shapes) n += s.mesh.triangleCount();
     return n;
 }
 
-size_t World::userPrimitiveCount() const {
+size_t userPrimitivesOf(const std::vector<SceneShape>& shapes) {
     size_t n = 0;
     for (const SceneShape& s : shapes)
         if (s.user) n += s.user->primitiveCount();
     return n;
 }
 
-size_t World::shapeMemoryBytes() const {
+size_t memoryOf(const std::vector<SceneShape>& shapes) {
     size_t n = 0;
     for (const SceneShape& s : shapes) n += s.user ? s.user->memoryBytes() : s.mesh.memoryBytes();
+    return n;
+}
+
+std::vector<ShapeRef> refsOf(const std::vector<SceneShape>& shapes) {
+    std::vector<ShapeRef> refs;
+    refs.reserve(shapes.size());
+    for (const SceneShape& s : shapes) refs.push_back(s.ref());
+    return refs;
+}
+
+Bounds3 boundsOf(const std::vector<SceneShape>& shapes) {
+    Bounds3 b;
+    for (const SceneShape& s : shapes) b.expand(s.ref().bounds());
+    return b;
+}
+
+}  // namespace
+
+SceneInstance::SceneInstance(uint32_t prototypeIndex, const Mat4& toWorld)
+    : prototype(prototypeIndex),
+      objectToWorld(toWorld),
+      worldToObject(glm::inverse(toWorld)),
+      normalToWorld(normalMatrix(toWorld)) {}
+
+SurfaceInteraction World::interaction(const Ray& ray, const Hit& hit) const {
+    const SceneInstance* inst = instance(hit);
+    const SceneShape& s = shape(hit);
+    if (!inst) {
+        if (s.user) return s.user->interaction(ray, hit);
+        return triangleInteraction(s.mesh, hit.primID, hit.u, hit.v);
+    }
+    const SurfaceInteraction local =
+        s.user ? s.user->interaction(transformRay(inst->worldToObject, ray), hit)
+               : triangleInteraction(s.mesh, hit.primID, hit.u, hit.v);
+    return transformInteraction(local, inst->objectToWorld, inst->normalToWorld);
+}
+
+AccelScene World::accelScene() const {
+    AccelScene scene;
+    scene.shapes = refsOf(shapes);
+    scene.prototypes.reserve(prototypes.size());
+    for (const Prototype& p : prototypes) scene.prototypes.push_back(refsOf(p.shapes));
+    scene.instances.reserve(instances.size());
+    for (const SceneInstance& i : instances)
+        scene.instances.push_back(AccelInstance{i.prototype, i.objectToWorld});
+    return scene;
+}
+
+Bounds3 World::bounds() const {
+    Bounds3 b = boundsOf(shapes);
+    std::vector<Bounds3> prototypeBounds;
+    prototypeBounds.reserve(prototypes.size());
+    for (const Prototype& p : prototypes) prototypeBounds.push_back(boundsOf(p.shapes));
+    for (const SceneInstance& i : instances)
+        b.expand(transformBounds(i.objectToWorld, prototypeBounds[i.prototype]));
+    return b;
+}
+
+size_t World::triangleCount() const {
+    size_t n = trianglesOf(shapes);
+    for (const Prototype& p : prototypes) n += trianglesOf(p.shapes);
+    return n;
+}
+
+size_t World::userPrimitiveCount() const {
+    size_t n = userPrimitivesOf(shapes);
+    for (const Prototype& p : prototypes) n += userPrimitivesOf(p.shapes);
+    return n;
+}
+
+size_t World::instancedTriangleCount() const {
+    std::vector<size_t> perPrototype;
+    perPrototype.reserve(prototypes.size());
+    for (const Prototype& p : prototypes) perPrototype.push_back(trianglesOf(p.shapes));
+    size_t n = trianglesOf(shapes);
+    for (const SceneInstance& i : instances) n += perPrototype[i.prototype];
+    return n;
+}
+
+size_t World::shapeMemoryBytes() const {
+    size_t n = memoryOf(shapes) + instances.capacity() * sizeof(SceneInstance);
+    for (const Prototype& p : prototypes) n += memoryOf(p.shapes);
     return n;
 }
 

@@ -1,8 +1,11 @@
 // NaiveAccel: every ray against every primitive (see naive_accel.h).
 //
 // Invariants:
-//  - geomID == index into shapes_, primID == triangle / primitive index — the
-//    same numbering Embree reports, so the two compare hit for hit.
+//  - geomID == index into shapes_ (or into an instanced prototype's list, with
+//    instID = shapes_.size() + instance index), primID == triangle / primitive
+//    index — the same numbering Embree reports, so the two compare hit for hit.
+//  - An instance is tested by mapping the ray into its object space, exactly
+//    as Embree does: t keeps its meaning and Ng stays in object space.
 //  - The nearest-hit search only ever shrinks tfar, and accepts a candidate
 //    only if it is strictly nearer (the triangle test and UserShape::intersect
 //    both require t < tfar), so of several hits at the same t the first in
@@ -16,25 +19,91 @@
 
 #include <vector>
 
+#include "strahl/core/error.h"
+#include "strahl/core/transform.h"
 #include "strahl/reference/watertight_triangle.h"
 
 namespace strahl {
 
 namespace {
 
+// One instance as the naive loop needs it: the query goes into object space.
+struct NaiveInstance {
+    const std::vector<ShapeRef>* shapes;  // the prototype's
+    Mat4 worldToObject;
+    uint32_t instID;
+};
+
 class NaiveAccel final : public Accel {
 public:
-    explicit NaiveAccel(std::span<const ShapeRef> shapes) : shapes_(shapes.begin(), shapes.end()) {
+    explicit NaiveAccel(const AccelScene& scene)
+        : shapes_(scene.shapes), prototypes_(scene.prototypes) {
         for (const ShapeRef& shape : shapes_) bounds_.expand(shape.bounds());
+        instances_.reserve(scene.instances.size());
+        for (size_t k = 0; k < scene.instances.size(); ++k) {
+            const AccelInstance& instance = scene.instances[k];
+            if (instance.prototype >= prototypes_.size())
+                fail("instance ", k, ": prototype ", instance.prototype, " does not exist (",
+                     prototypes_.size(), " prototypes)");
+            const std::vector<ShapeRef>& prototype = prototypes_[instance.prototype];
+            instances_.push_back(NaiveInstance{&prototype, glm::inverse(instance.objectToWorld),
+                                               scene.instanceId(k)});
+            for (const ShapeRef& shape : prototype)
+                bounds_.expand(transformBounds(instance.objectToWorld, shape.bounds()));
+        }
     }
 
     Hit intersect(const Ray& ray) const override {
-        const WatertightRay rayInRaySpace(ray);
         Hit closest;
         float tfar = ray.tfar;  // the closest hit so far bounds every later test
-        for (size_t geom = 0; geom < shapes_.size(); ++geom) {
+        intersectShapes(shapes_, ray, kInvalidId, tfar, closest);
+        for (const NaiveInstance& instance : instances_) {
+            // Like Embree: the ray is mapped into object space, t keeps its
+            // meaning, and Ng is reported in object space.
+            intersectShapes(*instance.shapes, transformRay(instance.worldToObject, ray),
+                            instance.instID, tfar, closest);
+        }
+        return closest;
+    }
+
+    bool occluded(const Ray& ray) const override {
+        if (anyHit(shapes_, ray)) return true;
+        for (const NaiveInstance& instance : instances_) {
+            if (anyHit(*instance.shapes, transformRay(instance.worldToObject, ray))) return true;
+        }
+        return false;
+    }
+
+    void intersect8(const int* valid, RayHitPacket8& packet, RayCoherence) const override {
+        intersectLanes(valid, packet);
+    }
+    void intersect16(const int* valid, RayHitPacket16& packet, RayCoherence) const override {
+        intersectLanes(valid, packet);
+    }
+
+    int nativePacketWidth() const override { return 1; }
+    Bounds3 bounds() const override { return bounds_; }
+    size_t memoryBytes() const override {
+        size_t bytes = sizeof(*this) + shapes_.capacity() * sizeof(ShapeRef) +
+                       instances_.capacity() * sizeof(NaiveInstance);
+        for (const std::vector<ShapeRef>& prototype : prototypes_)
+            bytes += sizeof(prototype) + prototype.capacity() * sizeof(ShapeRef);
+        return bytes;
+    }
+
+private:
+    static const Vec3& vertex(const TriangleMesh& mesh, size_t tri, size_t corner) {
+        return mesh.positions[mesh.indices[3 * tri + corner]];
+    }
+
+    // The nearest hit of `ray` on `shapes` closer than tfar, if any, replaces
+    // `closest` (IDs included) and shrinks tfar.
+    static void intersectShapes(const std::vector<ShapeRef>& shapes, const Ray& ray,
+                                uint32_t instID, float& tfar, Hit& closest) {
+        const WatertightRay rayInRaySpace(ray);
+        for (size_t geom = 0; geom < shapes.size(); ++geom) {
             const auto geomID = static_cast<uint32_t>(geom);
-            if (const TriangleMesh* mesh = shapes_[geom].mesh) {
+            if (const TriangleMesh* mesh = shapes[geom].mesh) {
                 const size_t triangles = mesh->triangleCount();
                 for (size_t tri = 0; tri < triangles; ++tri) {
                     if (intersectTriangleWatertight(rayInRaySpace, ray.tnear, tfar,
@@ -43,10 +112,11 @@ public:
                         tfar = closest.t;
                         closest.geomID = geomID;
                         closest.primID = static_cast<uint32_t>(tri);
+                        closest.instID = instID;
                     }
                 }
             } else {
-                const UserShape& user = *shapes_[geom].user;
+                const UserShape& user = *shapes[geom].user;
                 Ray shrunk = ray;
                 for (uint32_t prim = 0, n = user.primitiveCount(); prim < n; ++prim) {
                     shrunk.tfar = tfar;
@@ -56,16 +126,16 @@ public:
                         tfar = candidate.t;
                         closest.geomID = geomID;
                         closest.primID = prim;
+                        closest.instID = instID;
                     }
                 }
             }
         }
-        return closest;
     }
 
-    bool occluded(const Ray& ray) const override {
+    static bool anyHit(const std::vector<ShapeRef>& shapes, const Ray& ray) {
         const WatertightRay rayInRaySpace(ray);
-        for (const ShapeRef& shape : shapes_) {
+        for (const ShapeRef& shape : shapes) {
             if (const TriangleMesh* mesh = shape.mesh) {
                 const size_t triangles = mesh->triangleCount();
                 for (size_t tri = 0; tri < triangles; ++tri) {
@@ -84,24 +154,6 @@ public:
         return false;
     }
 
-    void intersect8(const int* valid, RayHitPacket8& packet, RayCoherence) const override {
-        intersectLanes(valid, packet);
-    }
-    void intersect16(const int* valid, RayHitPacket16& packet, RayCoherence) const override {
-        intersectLanes(valid, packet);
-    }
-
-    int nativePacketWidth() const override { return 1; }
-    Bounds3 bounds() const override { return bounds_; }
-    size_t memoryBytes() const override {
-        return sizeof(*this) + shapes_.capacity() * sizeof(ShapeRef);
-    }
-
-private:
-    static const Vec3& vertex(const TriangleMesh& mesh, size_t tri, size_t corner) {
-        return mesh.positions[mesh.indices[3 * tri + corner]];
-    }
-
     // One single-ray query per active lane, written back in the packet layout
     // of accel.h: a hit sets tfar, u, v, Ng and the IDs; a miss sets geomID to
     // kInvalidId and leaves the ray (tfar included) as it was. Inactive lanes
@@ -114,17 +166,23 @@ private:
     }
 
     std::vector<ShapeRef> shapes_;
+    std::vector<std::vector<ShapeRef>> prototypes_;
+    std::vector<NaiveInstance> instances_;
     Bounds3 bounds_;
 };
 
 }  // namespace
 
+std::unique_ptr<Accel> buildNaiveAccel(const AccelScene& scene) {
+    return std::make_unique<NaiveAccel>(scene);
+}
+
 std::unique_ptr<Accel> buildNaiveAccel(std::span<const ShapeRef> shapes) {
-    return std::make_unique<NaiveAccel>(shapes);
+    return buildNaiveAccel(AccelScene{{shapes.begin(), shapes.end()}, {}, {}});
 }
 
 std::unique_ptr<Accel> buildNaiveAccel(std::span<const TriangleMesh* const> meshes) {
-    return std::make_unique<NaiveAccel>(meshShapeRefs(meshes));
+    return buildNaiveAccel(meshShapeRefs(meshes));
 }
 
 }  // namespace strahl

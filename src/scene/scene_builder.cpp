@@ -4,10 +4,12 @@
 #include <tbb/task_arena.h>
 
 #include <chrono>
+#include <cmath>
 #include <exception>
 #include <map>
 #include <sstream>
 
+#include "instance_flattening.h"
 #include "strahl/core/error.h"
 #include "strahl/meshio/mesh_file.h"
 #include "strahl/reference/naive_accel.h"
@@ -52,6 +54,50 @@ AccelKind accelFromName(const std::string& name) {
 
 const char* accelName(AccelKind kind) { return kind == AccelKind::Naive ? "naive" : "embree"; }
 
+namespace {
+
+// One shape to load: where it is described and where its result goes.
+struct ShapeJob {
+    const ShapeDesc* desc;
+    std::vector<SceneShape>* destination;
+};
+
+// The shapes to load: the top level's own, then each prototype's, skipping
+// instance entries (flattened separately) and groups no instance reaches.
+std::vector<ShapeJob> collectShapeJobs(const SceneDesc& desc,
+                                       const scene_detail::FlatInstances& flat, World& world) {
+    std::vector<ShapeJob> jobs;
+    for (const ShapeDesc& shape : desc.shapes) {
+        if (shape.kind != ShapeKind::Instance) jobs.push_back({&shape, &world.shapes});
+    }
+    world.prototypes.resize(flat.prototypeGroups.size());
+    for (size_t p = 0; p < flat.prototypeGroups.size(); ++p) {
+        const GroupDesc& group = desc.groups[flat.prototypeGroups[p]];
+        world.prototypes[p].name = group.name;
+        for (const ShapeDesc& shape : group.shapes) {
+            if (shape.kind != ShapeKind::Instance)
+                jobs.push_back({&shape, &world.prototypes[p].shapes});
+        }
+    }
+    return jobs;
+}
+
+void placeInstances(const SceneDesc& desc, const scene_detail::FlatInstances& flat, World& world) {
+    world.instances.reserve(flat.instances.size());
+    for (const scene_detail::FlatInstance& instance : flat.instances) {
+        // Each transform was checked when parsed, but a product of many can
+        // still under- or overflow.
+        const float det = glm::determinant(Mat3(instance.objectToWorld));
+        if (!std::isfinite(det) || det == 0.0f)
+            fail(desc.file.filename().string(), ": an instance of group '",
+                 desc.groups[flat.prototypeGroups[instance.prototype]].name,
+                 "' has a singular or non-finite composed transform");
+        world.instances.emplace_back(instance.prototype, instance.objectToWorld);
+    }
+}
+
+}  // namespace
+
 World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTimings* timings) {
     const auto loadStart = Clock::now();
     World world;
@@ -67,24 +113,28 @@ World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTiming
         world.materials.push_back(Material{m.name, m.diffuse, m.emission});
     }
 
-    // Load every mesh file in parallel; the first error (in shape order) wins so
+    const scene_detail::FlatInstances flat = scene_detail::flattenInstances(desc);
+    const std::vector<ShapeJob> jobs = collectShapeJobs(desc, flat, world);
+
+    // Load every mesh file in parallel; the first error (in job order) wins so
     // the message does not depend on thread timing.
-    std::vector<LoadedMesh> loaded(desc.shapes.size());
-    std::vector<std::shared_ptr<const UserShape>> userShapes(desc.shapes.size());
-    std::vector<std::exception_ptr> errors(desc.shapes.size());
+    std::vector<LoadedMesh> loaded(jobs.size());
+    std::vector<std::shared_ptr<const UserShape>> userShapes(jobs.size());
+    std::vector<std::exception_ptr> errors(jobs.size());
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
     arena.execute([&] {
-        tbb::parallel_for(size_t(0), desc.shapes.size(), [&](size_t i) {
+        tbb::parallel_for(size_t(0), jobs.size(), [&](size_t i) {
+            const ShapeDesc& shape = *jobs[i].desc;
             try {
-                if (desc.shapes[i].kind == ShapeKind::Implicit) {
-                    userShapes[i] = makeImplicitShape(desc, desc.shapes[i]);
+                if (shape.kind == ShapeKind::Implicit) {
+                    userShapes[i] = makeImplicitShape(desc, shape);
                     return;
                 }
-                LoadedMesh mesh = loadShape(desc.shapes[i]);
-                mesh.mesh.transform(desc.shapes[i].transform);
-                mesh.mesh.validate(shapeSource(desc, desc.shapes[i]));
+                LoadedMesh mesh = loadShape(shape);
+                mesh.mesh.transform(shape.transform);
+                mesh.mesh.validate(shapeSource(desc, shape));
                 if (mesh.mesh.triangleCount() == 0)
-                    fail(shapeSource(desc, desc.shapes[i]), ": the mesh has no triangles");
+                    fail(shapeSource(desc, shape), ": the mesh has no triangles");
                 loaded[i] = std::move(mesh);
             } catch (...) {
                 errors[i] = std::current_exception();
@@ -94,9 +144,8 @@ World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTiming
     for (const std::exception_ptr& e : errors)
         if (e) std::rethrow_exception(e);
 
-    world.shapes.reserve(desc.shapes.size());
-    for (size_t i = 0; i < desc.shapes.size(); ++i) {
-        const ShapeDesc& shape = desc.shapes[i];
+    for (size_t i = 0; i < jobs.size(); ++i) {
+        const ShapeDesc& shape = *jobs[i].desc;
         SceneShape geometry;
         geometry.name = shape.name;
         geometry.user = std::move(userShapes[i]);
@@ -118,8 +167,9 @@ World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTiming
                 world.materials.push_back(Material{shape.name + "/" + m.name, m.diffuse, m.emission});
             }
         }
-        world.shapes.push_back(std::move(geometry));
+        jobs[i].destination->push_back(std::move(geometry));
     }
+    placeInstances(desc, flat, world);
 
     for (const LightDesc& l : desc.lights) {
         Light light;
@@ -134,7 +184,7 @@ World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTiming
 
     const auto bvhStart = Clock::now();
     if (options.bvhStarted) options.bvhStarted();
-    const std::vector<ShapeRef> refs = world.shapeRefs();
+    const AccelScene refs = world.accelScene();
     if (options.accel == AccelKind::Naive) {
         world.accel = buildNaiveAccel(refs);
     } else {

@@ -245,12 +245,41 @@ TriangleMesh parseInlineMesh(const JsonValue& v, const std::string& label) {
 void parseMeshSource(const JsonValue& v, const fs::path& folder, const std::string& label,
                      ShapeDesc& s);
 
-ShapeDesc parseShape(const JsonValue& v, const fs::path& folder, const std::string& label,
-                     const std::vector<MaterialDesc>& materials) {
+// What a shape may refer to by name.
+struct ShapeContext {
+    fs::path folder;
+    std::string label;
+    const std::vector<MaterialDesc>& materials;
+    std::span<const std::string> groupNames;
+};
+
+ShapeDesc parseShape(const JsonValue& v, const ShapeContext& context) {
+    const fs::path& folder = context.folder;
+    const std::string& label = context.label;
+    const std::vector<MaterialDesc>& materials = context.materials;
     ShapeDesc s;
     s.where = v.pointer();
     if (!v.raw().is_object()) v.fail("expected an object, got ", v.describe());
-    const std::string type = v.get("type").oneOf({"mesh", "implicit"});
+    const std::string type = v.get("type").oneOf({"mesh", "implicit", "instance"});
+    if (type == "instance") {
+        v.requireKeys({"type", "name", "group", "transform"});
+        s.kind = ShapeKind::Instance;
+        const JsonValue group = v.get("group");
+        const std::string groupName = group.string();
+        const auto found = std::find(context.groupNames.begin(), context.groupNames.end(), groupName);
+        if (found == context.groupNames.end()) {
+            std::string defined;
+            for (const std::string& name : context.groupNames)
+                defined += (defined.empty() ? "" : ", ") + name;
+            group.fail("unknown group '", groupName, "' (defined: ",
+                       defined.empty() ? "none" : defined, ")");
+        }
+        s.group = static_cast<size_t>(found - context.groupNames.begin());
+        s.name = s.where;
+        if (auto name = v.find("name")) s.name = name->string();
+        if (auto transform = v.find("transform")) s.transform = parseTransform(*transform);
+        return s;
+    }
     if (type == "implicit") {
         v.requireKeys({"type", "name", "material", "transform", "surface", "box", "cells",
                        "tolerance"});
@@ -302,6 +331,68 @@ void parseMeshSource(const JsonValue& v, const fs::path& folder, const std::stri
     }
 }
 
+// --- groups --------------------------------------------------------------------
+
+// The names of "groups", checked unique and non-empty, in order: shapes refer
+// to groups by name, also to groups defined later in the list.
+std::vector<std::string> parseGroupNames(const JsonValue& groups) {
+    std::vector<std::string> names;
+    for (size_t i = 0; i < groups.size(); ++i) {
+        const JsonValue g = groups.at(i);
+        if (!g.raw().is_object()) g.fail("expected an object, got ", g.describe());
+        const JsonValue name = g.get("name");
+        std::string text = name.string();
+        if (text.empty()) name.fail("must not be empty");
+        const auto earlier = std::find(names.begin(), names.end(), text);
+        if (earlier != names.end())
+            name.fail("group '", text, "' is already defined at ", groups.pointer(), "/",
+                      earlier - names.begin());
+        names.push_back(std::move(text));
+    }
+    return names;
+}
+
+// Rejects groups that place themselves, directly or through others, and
+// chains of groups nested deeper than kMaxGroupNesting. Depth-first over the
+// "instance" shapes; `path` is the chain of groups being expanded.
+void checkGroupNesting(const SceneDesc& scene, size_t group, std::vector<size_t>& path,
+                       std::vector<bool>& done, const std::string& label) {
+    if (done[group]) return;
+    const auto cycleStart = std::find(path.begin(), path.end(), group);
+    if (cycleStart != path.end()) {
+        std::string chain;
+        for (auto it = cycleStart; it != path.end(); ++it) chain += scene.groups[*it].name + " -> ";
+        fail(label, ": ", scene.groups[group].where, ": group '", scene.groups[group].name,
+             "' places itself (", chain, scene.groups[group].name, ")");
+    }
+    if (path.size() >= static_cast<size_t>(kMaxGroupNesting))
+        fail(label, ": ", scene.groups[group].where, ": groups nest more than ", kMaxGroupNesting,
+             " levels deep");
+    path.push_back(group);
+    for (const ShapeDesc& shape : scene.groups[group].shapes) {
+        if (shape.kind == ShapeKind::Instance) checkGroupNesting(scene, shape.group, path, done, label);
+    }
+    path.pop_back();
+    done[group] = true;
+}
+
+std::vector<GroupDesc> parseGroups(const JsonValue& groups, const ShapeContext& context) {
+    std::vector<GroupDesc> result;
+    for (size_t i = 0; i < groups.size(); ++i) {
+        const JsonValue g = groups.at(i);
+        g.requireKeys({"name", "shapes"});
+        GroupDesc group;
+        group.name = context.groupNames[i];
+        group.where = g.pointer();
+        const JsonValue shapes = g.get("shapes");
+        if (shapes.size() == 0) shapes.fail("a group needs at least one shape");
+        for (size_t j = 0; j < shapes.size(); ++j)
+            group.shapes.push_back(parseShape(shapes.at(j), context));
+        result.push_back(std::move(group));
+    }
+    return result;
+}
+
 // --- lights --------------------------------------------------------------------
 
 LightDesc parseLight(const JsonValue& v) {
@@ -330,7 +421,8 @@ SceneDesc parseSceneText(const std::string& text, const fs::path& file) {
     const std::string label = file.string();
     const nlohmann::json document = scene_detail::parseJsonText(text, label);
     const JsonValue root(document, "", label);
-    root.requireKeys({"camera", "film", "render", "background", "materials", "shapes", "lights"});
+    root.requireKeys(
+        {"camera", "film", "render", "background", "materials", "groups", "shapes", "lights"});
 
     SceneDesc scene;
     scene.file = fs::absolute(file).lexically_normal();
@@ -344,10 +436,22 @@ SceneDesc parseSceneText(const std::string& text, const fs::path& file) {
     if (auto background = root.find("background")) scene.background = background->color();
     if (auto materials = root.find("materials")) scene.materials = parseMaterials(*materials);
 
+    const auto groups = root.find("groups");
+    const std::vector<std::string> groupNames =
+        groups ? parseGroupNames(*groups) : std::vector<std::string>();
+    const ShapeContext context{folder, label, scene.materials, groupNames};
+    if (groups) {
+        scene.groups = parseGroups(*groups, context);
+        std::vector<size_t> path;
+        std::vector<bool> done(scene.groups.size(), false);
+        for (size_t g = 0; g < scene.groups.size(); ++g)
+            checkGroupNesting(scene, g, path, done, label);
+    }
+
     const auto shapes = root.find("shapes");
     if (!shapes || shapes->size() == 0) fail(label, ": scene has no shapes");
     for (size_t i = 0; i < shapes->size(); ++i)
-        scene.shapes.push_back(parseShape(shapes->at(i), folder, label, scene.materials));
+        scene.shapes.push_back(parseShape(shapes->at(i), context));
 
     if (auto lights = root.find("lights")) {
         for (size_t i = 0; i < lights->size(); ++i)

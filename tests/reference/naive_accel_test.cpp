@@ -46,44 +46,6 @@ TriangleMesh orientedBox(const Vec3& centre, const Vec3& halfSize) {
     return m;
 }
 
-// A subdivided icosahedron projected onto a sphere: 20 * 4^level triangles,
-// closed, every edge shared by two triangles, irregular float coordinates.
-TriangleMesh icosphere(int level, const Vec3& centre, float radius) {
-    const float g = (1.0f + std::sqrt(5.0f)) / 2.0f;
-    std::vector<Vec3> unit = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0},
-                              {0, -1, g}, {0, 1, g}, {0, -1, -g}, {0, 1, -g},
-                              {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
-    for (Vec3& p : unit) p = glm::normalize(p);
-    std::vector<uint32_t> tris = {0, 11, 5, 0, 5,  1,  0,  1,  7,  0,  7, 10, 0, 10, 11,
-                                  1, 5,  9, 5, 11, 4,  11, 10, 2,  10, 7, 6,  7, 1,  8,
-                                  3, 9,  4, 3, 4,  2,  3,  2,  6,  3,  6, 8,  3, 8,  9,
-                                  4, 9,  5, 2, 4,  11, 6,  2,  10, 8,  6, 7,  9, 8,  1};
-    for (int l = 0; l < level; ++l) {
-        std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoints;
-        auto midpoint = [&](uint32_t a, uint32_t b) {
-            const auto key = std::minmax(a, b);
-            const auto found = midpoints.find(key);
-            if (found != midpoints.end()) return found->second;
-            unit.push_back(glm::normalize(unit[a] + unit[b]));
-            const auto index = static_cast<uint32_t>(unit.size() - 1);
-            midpoints.emplace(key, index);
-            return index;
-        };
-        std::vector<uint32_t> finer;
-        for (size_t t = 0; t < tris.size(); t += 3) {
-            const uint32_t a = tris[t], b = tris[t + 1], c = tris[t + 2];
-            const uint32_t ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
-            finer.insert(finer.end(), {a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca});
-        }
-        tris = std::move(finer);
-    }
-    TriangleMesh m;
-    for (const Vec3& p : unit) m.positions.push_back(centre + radius * p);
-    m.indices = std::move(tris);
-    m.reservePadding();
-    return m;
-}
-
 // Small random triangles scattered in a cube of side 4 around `offset`.
 TriangleMesh randomSoup(int triangles, const Vec3& offset, uint64_t seed) {
     Pcg32 rng(seed, 1);
@@ -395,7 +357,7 @@ int raysThroughEdgesThatMiss(const TriangleMesh& mesh, const Vec3& inside, int r
 
 TEST(NaiveAccel, NoRaySlipsThroughTheEdgesOfAnIcosphere) {
     const Vec3 centre(0.37f, -1.21f, 2.9f);
-    const TriangleMesh sphere = icosphere(3, centre, 1.7f);
+    const TriangleMesh sphere = test::icosphere(3, centre, 1.7f);
     int rays = 0;
     EXPECT_EQ(raysThroughEdgesThatMiss(sphere, centre, 1, &rays), 0) << "of " << rays << " rays";
     EXPECT_GT(rays, 20000);
@@ -502,7 +464,7 @@ void expectAgreement(const Agreement& a, int minHits) {
 
 TEST(NaiveAccel, AgreesWithEmbreeOnRandomRaysAgainstMeshes) {
     const TriangleMesh soup = randomSoup(600, Vec3(0.5f, 0.0f, 0.0f), 11);
-    const TriangleMesh sphere = icosphere(2, Vec3(-1.0f, 1.5f, 0.5f), 1.2f);
+    const TriangleMesh sphere = test::icosphere(2, Vec3(-1.0f, 1.5f, 0.5f), 1.2f);
     const TriangleMesh grid = wavyGrid(20, -1.5f);
     const TriangleMesh* meshes[] = {&soup, &sphere, &grid};
     const std::vector<ShapeRef> shapes = meshRefs({&soup, &sphere, &grid});
@@ -513,7 +475,7 @@ TEST(NaiveAccel, AgreesWithEmbreeOnRandomRaysAgainstMeshes) {
 }
 
 TEST(NaiveAccel, AgreesWithEmbreeOnMeshesAndUserShapes) {
-    const TriangleMesh sphere = icosphere(2, Vec3(1.0f, -0.5f, 0.0f), 1.5f);
+    const TriangleMesh sphere = test::icosphere(2, Vec3(1.0f, -0.5f, 0.0f), 1.5f);
     const TriangleMesh soup = randomSoup(300, Vec3(0.0f), 5);
     const SphereSet balls = randomSpheres(60, 9);
     const std::vector<ShapeRef> shapes = {{&sphere, nullptr}, {nullptr, &balls}, {&soup, nullptr}};

@@ -3,16 +3,20 @@
 // BVH here, the naive loop over all primitives in the reference module. Callers
 // never see Embree types: packets are strahl's own SoA layout (core/packet.h).
 //
-// Geometry IDs are stable and computable: the i-th shape handed to a builder
-// has geomID i, and primID is the triangle index within a mesh or the primitive
-// index within a user shape.
+// Geometry IDs are stable and computable: the i-th top-level shape handed to a
+// builder has geomID i, and primID is the triangle index within a mesh or the
+// primitive index within a user shape. With instancing (AccelScene), instance k
+// has the top-level ID shapes.size() + k, reported as Hit::instID; geomID then
+// indexes the instanced prototype's own shape list (see Hit in core/ray.h).
 
 #include <cstddef>
 #include <functional>
 #include <memory>
 #include <span>
+#include <vector>
 
 #include "strahl/core/bounds.h"
+#include "strahl/core/math.h"
 #include "strahl/core/packet.h"
 #include "strahl/core/ray.h"
 #include "strahl/geometry/triangle_mesh.h"
@@ -54,6 +58,26 @@ public:
     virtual size_t memoryBytes() const = 0;
 };
 
+// One placement of a prototype.
+struct AccelInstance {
+    uint32_t prototype = 0;    // index into AccelScene::prototypes
+    Mat4 objectToWorld{1.0f};  // affine and invertible
+};
+
+// What an accelerator is built over: top-level shapes plus instancing — each
+// prototype is a list of shapes stored (and, for Embree, given a BVH) once and
+// placed by any number of instances. One level: prototypes hold no instances
+// (the scene builder flattens nested groups).
+struct AccelScene {
+    std::vector<ShapeRef> shapes;                  // geomID = index
+    std::vector<std::vector<ShapeRef>> prototypes;  // geomID = index within the prototype
+    std::vector<AccelInstance> instances;          // instID = shapes.size() + index
+
+    uint32_t instanceId(size_t instance) const {
+        return static_cast<uint32_t>(shapes.size() + instance);
+    }
+};
+
 struct AccelBuildOptions {
     int threads = 0;  // 0: all hardware threads
     // Called with the build's progress fraction in [0, 1], possibly from several
@@ -63,8 +87,12 @@ struct AccelBuildOptions {
 
 // Builds an Embree BVH over the shapes (which must outlive the Accel): meshes as
 // Embree triangles — their vertex buffers shared with Embree, not copied, when
-// reservePadding() was called — and user shapes as Embree user geometry. Throws
-// strahl::Error if Embree reports an error.
+// reservePadding() was called — user shapes as Embree user geometry, each
+// prototype as its own Embree scene and each instance as an Embree instance of
+// it. Throws strahl::Error if Embree reports an error or a prototype index is
+// out of range.
+std::unique_ptr<Accel> buildEmbreeAccel(const AccelScene& scene, const AccelBuildOptions& options);
+// The same without instancing.
 std::unique_ptr<Accel> buildEmbreeAccel(std::span<const ShapeRef> shapes,
                                         const AccelBuildOptions& options);
 // The same for a list of meshes only.

@@ -67,7 +67,7 @@ struct alignas(64) RayHitPacket {
         Ng_y[lane] = h.Ng.y;
         Ng_z[lane] = h.Ng.z;
         primID[lane] = h.primID;
-        instID[lane] = kInvalidId;  // no instancing
+        instID[lane] = h.instID;
     }
     Hit hit(int lane) const {
         Hit h;
@@ -78,6 +78,7 @@ struct alignas(64) RayHitPacket {
         h.Ng = Vec3(Ng_x[lane], Ng_y[lane], Ng_z[lane]);
         h.geomID = geomID[lane];
         h.primID = primID[lane];
+        h.instID = instID[lane];
         return h;
     }
 };

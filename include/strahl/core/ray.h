@@ -27,12 +27,18 @@ struct Ray {
 
 // The preliminary hit: only what the accelerator reports. The full surface
 // interaction is computed lazily by the scene for the closest hit.
+//
+// A hit inside an instance (Embree's convention): instID is the instance's ID
+// in the top-level scene, geomID and primID name the shape and primitive within
+// the instanced prototype, and Ng is in the prototype's object space. t is the
+// parameter along the caller's (world-space) ray either way.
 struct Hit {
     float t = kInfinity;
     float u = 0.0f, v = 0.0f;  // barycentrics of vertices 1 and 2 (Embree convention)
     Vec3 Ng{0.0f};             // unnormalised geometric normal
     uint32_t geomID = kInvalidId;
     uint32_t primID = kInvalidId;
+    uint32_t instID = kInvalidId;  // kInvalidId: not inside an instance
 
     bool valid() const { return geomID != kInvalidId; }
 };

@@ -18,4 +18,11 @@ struct SurfaceInteraction {
     uint32_t materialSlot = 0;  // faceMaterials entry, 0 if the mesh has none
 };
 
+// An interaction computed in an instance's object space, moved to world space:
+// p mapped with its error bound widened for the map's rounding, normals mapped
+// by `normalToWorld` (the inverse transpose of objectToWorld's linear part) and
+// renormalised; uv and the material slot are unchanged.
+SurfaceInteraction transformInteraction(const SurfaceInteraction& si, const Mat4& objectToWorld,
+                                        const Mat3& normalToWorld);
+
 }  // namespace strahl

@@ -28,10 +28,13 @@ public:
     // Unit shading normal. For meshes without vertex normals it is the
     // accelerator's geometric normal, normalised, with no vertex fetch.
     Vec3 shadingNormal() const {
-        const SceneShape& shape = world_.shapes[hit_.geomID];
+        const SceneShape& shape = world_.shape(hit_);
         if (!si_ && shape.isMesh() && shape.mesh.normals.empty()) {
-            const float len = glm::length(hit_.Ng);
-            if (len > 0.0f) return hit_.Ng / len;
+            const SceneInstance* instance = world_.instance(hit_);
+            // An instanced hit's Ng is in object space.
+            const Vec3 ng = instance ? instance->normalToWorld * hit_.Ng : hit_.Ng;
+            const float len = glm::length(ng);
+            if (len > 0.0f) return ng / len;
         }
         return interaction().Ns;
     }

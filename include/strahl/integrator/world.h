@@ -29,28 +29,58 @@ struct SceneShape {
     ShapeRef ref() const { return user ? ShapeRef{nullptr, user.get()} : ShapeRef{&mesh, nullptr}; }
 };
 
+// Shapes stored once and placed any number of times by instances (a group of
+// the scene file, with nested groups flattened into instances by the builder).
+struct Prototype {
+    std::string name;
+    std::vector<SceneShape> shapes;  // a hit's geomID indexes this list
+};
+
+struct SceneInstance {
+    uint32_t prototype = 0;  // index into World::prototypes
+    Mat4 objectToWorld{1.0f};
+    Mat4 worldToObject{1.0f};
+    Mat3 normalToWorld{1.0f};  // inverse transpose of objectToWorld's linear part
+
+    SceneInstance() = default;
+    SceneInstance(uint32_t prototypeIndex, const Mat4& toWorld);
+};
+
 struct World {
-    // Must not be resized once `accel` is built: Embree shares the vertex buffers.
-    std::vector<SceneShape> shapes;
+    // None of these may be resized once `accel` is built: Embree shares the
+    // vertex buffers.
+    std::vector<SceneShape> shapes;  // top level: geomID = index
+    std::vector<Prototype> prototypes;
+    std::vector<SceneInstance> instances;  // instance k has instID shapes.size() + k
     std::vector<Material> materials;
     std::vector<Light> lights;
     Color background{0.0f};
     std::unique_ptr<Accel> accel;
 
-    // The full surface interaction of a valid hit (two-phase intersection).
-    SurfaceInteraction interaction(const Ray& ray, const Hit& hit) const {
-        const SceneShape& shape = shapes[hit.geomID];
-        if (shape.user) return shape.user->interaction(ray, hit);
-        return triangleInteraction(shape.mesh, hit.primID, hit.u, hit.v);
+    // The instance a valid hit lies in, or null for a top-level shape.
+    const SceneInstance* instance(const Hit& hit) const {
+        return hit.instID == kInvalidId ? nullptr : &instances[hit.instID - shapes.size()];
     }
+    // The shape a valid hit lies on.
+    const SceneShape& shape(const Hit& hit) const {
+        const SceneInstance* inst = instance(hit);
+        return inst ? prototypes[inst->prototype].shapes[hit.geomID] : shapes[hit.geomID];
+    }
+    // The full surface interaction of a valid hit (two-phase intersection), in
+    // world space.
+    SurfaceInteraction interaction(const Ray& ray, const Hit& hit) const;
     const Material& material(const Hit& hit, const SurfaceInteraction& si) const {
-        return materials[shapes[hit.geomID].materialOfSlot[si.materialSlot]];
+        return materials[shape(hit).materialOfSlot[si.materialSlot]];
     }
-    // The list the accelerators are built over (geomID = index).
-    std::vector<ShapeRef> shapeRefs() const;
+    // What the accelerators are built over (the IDs of accel.h).
+    AccelScene accelScene() const;
     Bounds3 bounds() const;
-    size_t triangleCount() const;  // of the meshes
+    // Stored once: the meshes' triangles and the user shapes' primitives, top
+    // level and prototypes.
+    size_t triangleCount() const;
     size_t userPrimitiveCount() const;
+    // As rendered: every instance counts its prototype's triangles again.
+    size_t instancedTriangleCount() const;
     size_t shapeMemoryBytes() const;
 };
 

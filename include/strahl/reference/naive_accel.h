@@ -5,8 +5,9 @@
 // acceleration structure. It is strahl's correctness oracle (tests compare
 // Embree's answers with it) and the baseline the benchmarks beat.
 //
-// It implements the same Accel interface over the same ShapeRef list as
-// buildEmbreeAccel, with the same IDs (geomID = position in the list, primID =
+// It implements the same Accel interface over the same AccelScene as
+// buildEmbreeAccel (instances: the ray is mapped into the prototype's object
+// space and the prototype's shapes are looped over), with the same IDs (geomID = position in the list, primID =
 // triangle or primitive index) and the same hit conventions:
 //  - triangles go through the watertight test (watertight_triangle.h), which
 //    reports u, v and Ng exactly as Embree's triangle does;
@@ -25,6 +26,8 @@
 
 namespace strahl {
 
+std::unique_ptr<Accel> buildNaiveAccel(const AccelScene& scene);
+// The same without instancing.
 std::unique_ptr<Accel> buildNaiveAccel(std::span<const ShapeRef> shapes);
 // The same for a list of meshes only.
 std::unique_ptr<Accel> buildNaiveAccel(std::span<const TriangleMesh* const> meshes);

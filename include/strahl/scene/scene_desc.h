@@ -56,19 +56,32 @@ struct MaterialDesc {
     std::string where;
 };
 
-enum class ShapeKind { Mesh, Implicit };
+enum class ShapeKind { Mesh, Implicit, Instance };
 
 struct ShapeDesc {
     ShapeKind kind = ShapeKind::Mesh;
     std::string name;                // optional label, defaults to the JSON pointer
+    size_t group = 0;                // kind == Instance: index into SceneDesc::groups
     std::filesystem::path file;      // mesh file (resolved), empty for inline meshes
     TriangleMesh inlineMesh;         // used when file is empty
     ImplicitSurfacePtr implicitSurface;    // kind == Implicit: f, compiled at parse time
     ImplicitShapeOptions implicitOptions;  // its box, cells and tolerance
-    Mat4 transform{1.0f};            // object to world
+    Mat4 transform{1.0f};            // object to world (in a group: to the group's space)
     std::string material;            // empty: the file's own materials, else "default"
     std::string where;               // JSON pointer, e.g. "/shapes/0"
 };
+
+// A named group of shapes, stored once and placed by "instance" shapes (which
+// may themselves be in groups: groups nest, without cycles).
+struct GroupDesc {
+    std::string name;
+    std::vector<ShapeDesc> shapes;
+    std::string where;  // JSON pointer, e.g. "/groups/0"
+};
+
+// Groups nest at most this deep (a chain longer than this is an error), which
+// bounds the recursion of everything that walks them.
+inline constexpr int kMaxGroupNesting = 64;
 
 enum class LightType { Point, Directional };
 
@@ -88,6 +101,7 @@ struct SceneDesc {
     RenderDesc render;
     Color background{0.0f};  // radiance of rays that escape
     std::vector<MaterialDesc> materials;
+    std::vector<GroupDesc> groups;
     std::vector<ShapeDesc> shapes;
     std::vector<LightDesc> lights;
 };

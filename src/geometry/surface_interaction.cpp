@@ -1,0 +1,26 @@
+#include "strahl/geometry/surface_interaction.h"
+
+#include "strahl/core/transform.h"
+
+namespace strahl {
+
+namespace {
+
+Vec3 unitOrZero(const Vec3& v) {
+    const float len = glm::length(v);
+    return len > 0.0f ? v / len : v;
+}
+
+}  // namespace
+
+SurfaceInteraction transformInteraction(const SurfaceInteraction& si, const Mat4& objectToWorld,
+                                        const Mat3& normalToWorld) {
+    SurfaceInteraction out = si;
+    out.p = transformPoint(objectToWorld, si.p);
+    out.pError = transformPointError(objectToWorld, si.p, si.pError);
+    out.Ng = unitOrZero(normalToWorld * si.Ng);
+    out.Ns = unitOrZero(normalToWorld * si.Ns);
+    return out;
+}
+
+}  // namespace strahl

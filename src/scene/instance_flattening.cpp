@@ -1,0 +1,86 @@
+#include "instance_flattening.h"
+
+#include <algorithm>
+#include <limits>
+
+#include "strahl/core/error.h"
+
+namespace strahl::scene_detail {
+
+namespace {
+
+constexpr uint32_t kNoPrototype = std::numeric_limits<uint32_t>::max();
+
+bool hasOwnShapes(const GroupDesc& group) {
+    return std::any_of(group.shapes.begin(), group.shapes.end(),
+                       [](const ShapeDesc& s) { return s.kind != ShapeKind::Instance; });
+}
+
+class Flattener {
+public:
+    explicit Flattener(const SceneDesc& desc)
+        : desc_(desc),
+          prototypeOf_(desc.groups.size(), kNoPrototype),
+          counts_(desc.groups.size(), kUncounted) {}
+
+    FlatInstances run() {
+        // Count first, so an explosive nesting is rejected before anything is
+        // allocated for it.
+        uint64_t total = 0;
+        for (const ShapeDesc& shape : desc_.shapes) {
+            if (shape.kind == ShapeKind::Instance) total = cappedSum(total, count(shape.group));
+        }
+        if (total > kMaxInstances)
+            fail(desc_.file.filename().string(), ": the groups place more than ", kMaxInstances,
+                 " instances (the limit, 2^24)");
+        result_.instances.reserve(total);
+        for (const ShapeDesc& shape : desc_.shapes) {
+            if (shape.kind == ShapeKind::Instance) place(shape.group, shape.transform);
+        }
+        return std::move(result_);
+    }
+
+private:
+    static constexpr uint64_t kUncounted = std::numeric_limits<uint64_t>::max();
+
+    // Sums saturate just above the limit: the exact figure does not matter
+    // once it is too many, and nested groups can multiply past 2^64.
+    static uint64_t cappedSum(uint64_t a, uint64_t b) { return std::min(a + b, kMaxInstances + 1); }
+
+    // Instances one placement of `group` expands to (memoised).
+    uint64_t count(size_t group) {
+        if (counts_[group] != kUncounted) return counts_[group];
+        uint64_t n = hasOwnShapes(desc_.groups[group]) ? 1 : 0;
+        for (const ShapeDesc& shape : desc_.groups[group].shapes) {
+            if (shape.kind == ShapeKind::Instance) n = cappedSum(n, count(shape.group));
+        }
+        return counts_[group] = n;
+    }
+
+    void place(size_t group, const Mat4& toWorld) {
+        if (hasOwnShapes(desc_.groups[group]))
+            result_.instances.push_back(FlatInstance{prototype(group), toWorld});
+        for (const ShapeDesc& shape : desc_.groups[group].shapes) {
+            if (shape.kind == ShapeKind::Instance) place(shape.group, toWorld * shape.transform);
+        }
+    }
+
+    uint32_t prototype(size_t group) {
+        if (prototypeOf_[group] == kNoPrototype) {
+            prototypeOf_[group] = static_cast<uint32_t>(result_.prototypeGroups.size());
+            result_.prototypeGroups.push_back(group);
+        }
+        return prototypeOf_[group];
+    }
+
+    const SceneDesc& desc_;
+    std::vector<uint32_t> prototypeOf_;
+    std::vector<uint64_t> counts_;
+    FlatInstances result_;
+};
+
+}  // namespace
+
+FlatInstances flattenInstances(const SceneDesc& desc) { return Flattener(desc).run(); }
+
+}  // namespace strahl::scene_detail
