@@ -18,6 +18,7 @@
 #include "strahl/integrator/surface_hit.h"
 #include "strahl/render/renderer.h"
 #include "strahl/scene/scene_builder.h"
+#include "render_helpers.h"
 #include "test_support.h"
 
 namespace strahl {
@@ -64,28 +65,8 @@ const std::string kScene = R"({
               { "type": "directional", "direction": [0.4, -1, -0.3], "irradiance": 0.7 } ]
 })";
 
-struct Rendered {
-    std::vector<float> beauty, depth, normal;
-};
-
-Rendered render(const SceneDesc& desc, AccelKind accel, const std::string& integrator,
-                int threads = 2, int tile = 32) {
-    BuildOptions build;
-    build.accel = accel;
-    build.threads = threads;
-    const World world = buildWorld(desc, build);
-    const Camera camera = buildCamera(desc.camera, desc.film.width, desc.film.height);
-    Film film(desc.film.width, desc.film.height, PixelRect{0, 0, desc.film.width, desc.film.height},
-              {AovKind::Normal, AovKind::Depth});
-    RenderOptions options;
-    options.threads = threads;
-    options.tileSize = tile;
-    options.spp = desc.render.spp;
-    options.seed = desc.render.seed;
-    renderImage(world, camera, *makeIntegrator(integrator, world), film, options);
-    return Rendered{film.resolveBeauty(), film.resolveAov(AovKind::Depth),
-                    film.resolveAov(AovKind::Normal)};
-}
+using test::render;
+using test::Rendered;
 
 const SceneDesc& scene() {
     static const SceneDesc desc = parseSceneText(kScene, "implicit_agreement.json");

@@ -8,12 +8,14 @@
 #include <OpenImageIO/imagebufalgo.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 
 #include "strahl/film/image_output.h"
 #include "strahl/render/renderer.h"
 #include "strahl/scene/scene_builder.h"
+#include "render_helpers.h"
 #include "test_support.h"
 
 namespace strahl {
@@ -65,9 +67,18 @@ TEST_P(Regression, MatchesReference) {
     EXPECT_LE(double(result.nwarn) / pixels, kMaxWarnFraction) << result.nwarn << " pixels differ";
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, Regression,
-                         ::testing::Values("quad_and_box", "cornell_direct", "cornell_ortho_normal",
-                                           "cornell_primid", "implicit_direct"));
+// Every scene in the folder: a new scene without a reference fails until its
+// reference is made.
+INSTANTIATE_TEST_SUITE_P(Scenes, Regression, ::testing::ValuesIn(test::regressionScenes()),
+                         [](const auto& info) { return info.param; });
+
+TEST(RegressionSet, CoversTheScenesItWasMadeFor) {
+    const std::vector<std::string> scenes = test::regressionScenes();
+    for (const char* name : {"quad_and_box", "cornell_direct", "cornell_ortho_normal",
+                             "cornell_primid", "implicit_direct", "instances"}) {
+        EXPECT_NE(std::find(scenes.begin(), scenes.end(), name), scenes.end()) << name;
+    }
+}
 
 }  // namespace
 }  // namespace strahl
