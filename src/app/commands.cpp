@@ -7,6 +7,7 @@
 #include "strahl/core/error.h"
 #include "strahl/film/image_output.h"
 #include "strahl/meshio/mesh_file.h"
+#include "strahl/raster/rasterizer.h"
 #include "strahl/render/progress.h"
 #include "strahl/render/renderer.h"
 #include "strahl/scene/scene_builder.h"
@@ -70,31 +71,52 @@ int runRender(const Options& o) {
     // Fail on a bad output path or integrator name now, not after a long render.
     for (const auto& out : desc.film.outputs) checkOutputPath(out);
     requireIntegratorName(desc.render.integrator);
+    const bool raster = o.algorithm == "raster";
+    if (raster) requireRasterSettings(desc.render.integrator, desc.render.spp);
     const PixelRect crop = cropWindow(o, desc);
 
     if (o.quiet) setMeshWarningHandler([](const std::string&) {});
     ProgressReporter progress(ProgressReporter::defaultStyle(o.quiet));
     BuildOptions build;
     build.threads = o.threads.value_or(0);
-    build.accel = accelFromName(o.accel);
-    build.bvhStarted = [&] { progress.begin("bvh", 1); };
-    build.bvhProgress = [&](double f) { progress.setFraction(f); };
+    if (raster) {
+        build.accel = AccelKind::Naive;  // the rasterizer traces no rays: no BVH to build
+    } else {
+        build.accel = accelFromName(o.accel);
+        build.bvhStarted = [&] { progress.begin("bvh", 1); };
+        build.bvhProgress = [&](double f) { progress.setFraction(f); };
+    }
     BuildTimings timings;
     const World world = buildWorld(desc, build, &timings);
-    progress.end();
+    if (!raster) progress.end();  // of the BVH phase
 
     const Camera camera = buildCamera(desc.camera, desc.film.width, desc.film.height);
     const auto integrator = makeIntegrator(desc.render.integrator, world);
     Film film(desc.film.width, desc.film.height, crop, desc.film.aovs);
 
-    RenderOptions options;
-    options.threads = o.threads.value_or(0);
-    options.tileSize = o.tileSize;
-    options.spp = desc.render.spp;
-    options.seed = desc.render.seed;
-    options.packets = o.packets;
-    options.progress = &progress;
-    const RenderStats stats = renderImage(world, camera, *integrator, film, options);
+    RenderStats stats;
+    RasterStats rasterStats;
+    if (raster) {
+        RasterOptions options;
+        options.threads = o.threads.value_or(0);
+        options.tileSize = o.tileSize;
+        options.spp = desc.render.spp;
+        options.seed = desc.render.seed;
+        options.started = [&](size_t tiles) { progress.begin("raster", tiles); };
+        options.tileDone = [&] { progress.advance(1); };
+        rasterStats = rasterizeImage(world, camera, *integrator, film, options);
+        progress.end();
+        stats.seconds = rasterStats.seconds;
+    } else {
+        RenderOptions options;
+        options.threads = o.threads.value_or(0);
+        options.tileSize = o.tileSize;
+        options.spp = desc.render.spp;
+        options.seed = desc.render.seed;
+        options.packets = o.packets;
+        options.progress = &progress;
+        stats = renderImage(world, camera, *integrator, film, options);
+    }
 
     OutputSettings output;
     output.exrFloat = desc.film.exrFloat;
@@ -107,13 +129,24 @@ int runRender(const Options& o) {
     metadata.worldToCamera = camera.worldToCamera();
     metadata.extra["seed"] = std::to_string(desc.render.seed);
     metadata.extra["scene"] = desc.file.filename().string();
-    metadata.extra["accel"] = o.accel;
+    metadata.extra["algorithm"] = o.algorithm;
+    if (!raster) metadata.extra["accel"] = o.accel;
     for (const auto& out : desc.film.outputs) {
         writeImage(film, out, output, metadata);
         if (!o.quiet) std::fprintf(stderr, "wrote %s\n", out.string().c_str());
     }
 
-    if (!o.quiet) {
+    if (!o.quiet && raster) {
+        std::fprintf(stderr,
+                     "summary: load %.2f s, raster %.2f s | %s triangles (%s in view), %s "
+                     "fragments, %s pixels covered | %s, 1 spp, rasterized\n",
+                     timings.loadSeconds, rasterStats.seconds,
+                     humanCount(double(rasterStats.triangles)).c_str(),
+                     humanCount(double(rasterStats.trianglesInView)).c_str(),
+                     humanCount(double(rasterStats.fragments)).c_str(),
+                     humanCount(double(rasterStats.coveredPixels)).c_str(),
+                     desc.render.integrator.c_str());
+    } else if (!o.quiet) {
         const double rays = static_cast<double>(stats.cameraRays + stats.shadowRays);
         std::fprintf(stderr,
                      "summary: load %.2f s, bvh %.2f s, render %.2f s | %s rays (%s camera, %s "

@@ -8,6 +8,7 @@
 #include "strahl/core/error.h"
 #include "strahl/film/film.h"
 #include "strahl/integrator/integrator.h"
+#include "strahl/raster/rasterizer.h"
 #include "strahl/scene/scene_desc.h"
 
 namespace strahl::app {
@@ -76,6 +77,12 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
                        "Accelerator: embree (BVH, default) or naive (tests every primitive for "
                        "every ray: the reference the BVH is checked and benchmarked against)")
         ->check(CLI::IsMember({"embree", "naive"}));
+    std::string algorithmHelp =
+        "raytrace (image order, default) or raster (object order: a z-buffer rasterizer for "
+        "triangle meshes, 1 spp, integrators";
+    for (std::string_view n : rasterIntegratorNames()) algorithmHelp += " " + std::string(n);
+    render->add_option("--algorithm", o.algorithm, algorithmHelp + "; see docs/rasterizer.md)")
+        ->check(CLI::IsMember({"raytrace", "raster"}));
     render->add_option("--tile", o.tileSize, "Tile size in pixels (default 32)")
         ->check(CLI::Range(4, 4096));
     render->add_option("--ocio-config", o.color.configFile,

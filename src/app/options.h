@@ -30,6 +30,7 @@ struct Options {
     PacketMode packets = PacketMode::Auto;
     int tileSize = 32;
     std::string accel = "embree";  // embree | naive
+    std::string algorithm = "raytrace";  // raytrace | raster
     ColorSettings color;
 };
 

@@ -10,6 +10,7 @@
 
 #include "strahl/camera/tile_rays.h"
 #include "strahl/core/error.h"
+#include "strahl/integrator/camera_sample.h"
 
 namespace strahl {
 
@@ -33,24 +34,9 @@ struct TileContext {
     uint64_t cameraRays = 0;
 
     void shadeSample(int px, int py, const Ray& ray, const Hit& hit, SampleRng& rng) {
-        Color L;
-        AovSample aov;
-        if (hit.valid()) {
-            const SurfaceHit surface(world, ray, hit);
-            L = integrator.shade(world, surface, rng, stats);
-            aov.hit = true;
-            if (wantAovs) {
-                aov.normal = surface.shadingNormal();
-                aov.depth = hit.t * glm::length(ray.dir);
-                aov.albedo = surface.material().diffuse;
-            }
-        } else {
-            L = integrator.miss(world, ray);
-        }
-        // A non-finite sample would poison the pixel's mean forever; drop its
-        // radiance (the AOVs are finite by construction).
-        if (!isFinite(L)) L = Color(0.0f);
-        film.addSample(px, py, L, aov);
+        const CameraSample sample =
+            shadeCameraSample(world, integrator, ray, hit, rng, stats, wantAovs);
+        film.addSample(px, py, sample.radiance, sample.aov);
     }
 };
 
