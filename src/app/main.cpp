@@ -14,7 +14,11 @@ int main(int argc, char** argv) {
     Options options;
     if (const auto code = parseOptions(argc, argv, options)) return *code;
     try {
-        return options.command == Command::Render ? runRender(options) : runInfo(options);
+        switch (options.command) {
+            case Command::Render: return runRender(options);
+            case Command::Bench: return runBench(options.bench);
+            default: return runInfo(options);
+        }
     } catch (const strahl::Error& e) {
         std::fprintf(stderr, "strahl: error: %s\n", e.what());
     } catch (const std::bad_alloc&) {

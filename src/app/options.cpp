@@ -18,7 +18,8 @@ namespace {
 constexpr const char* kDescription =
     "strahl " STRAHL_VERSION " - an Embree-accelerated ray tracer.\n\n"
     "  strahl render SCENE.json -o image.exr -o image.png   render a scene\n"
-    "  strahl info SCENE.json                                primitive counts, bounds, memory\n\n"
+    "  strahl info SCENE.json                                primitive counts, bounds, memory\n"
+    "  strahl bench --out results.csv --plot cost.svg        Embree vs naive vs raster\n\n"
     "The scene format is documented in docs/scene-format.md, the options in docs/cli.md.\n"
     "Exit status: 0 success, 1 error (bad scene, mesh or output), 2 bad command line.";
 
@@ -93,6 +94,8 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
     CLI::App* info = app.add_subcommand("info", "Print primitive counts, bounds and memory");
     info->add_option("scene", o.scene, "Scene file")->required();
 
+    CLI::App* bench = addBenchCommand(app, o.bench);
+
     try {
         app.parse(argc, argv);
         if (!cropText.empty()) {
@@ -103,7 +106,9 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
         const int code = app.exit(e);  // prints help, version or the error
         return code == 0 ? 0 : 2;
     }
-    o.command = render->parsed() ? Command::Render : Command::Info;
+    o.command = render->parsed() ? Command::Render
+                : bench->parsed()  ? Command::Bench
+                                   : Command::Info;
     if (packets == "16") o.packets = PacketMode::Packet16;
     else if (packets == "8") o.packets = PacketMode::Packet8;
     else if (packets == "single") o.packets = PacketMode::Single;

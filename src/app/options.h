@@ -7,13 +7,14 @@
 #include <string>
 #include <vector>
 
+#include "bench_command.h"
 #include "strahl/core/pixel_rect.h"
 #include "strahl/film/display_transform.h"
 #include "strahl/render/renderer.h"
 
 namespace strahl::app {
 
-enum class Command { None, Render, Info };
+enum class Command { None, Render, Info, Bench };
 
 struct Options {
     Command command = Command::None;
@@ -32,6 +33,8 @@ struct Options {
     std::string accel = "embree";  // embree | naive
     std::string algorithm = "raytrace";  // raytrace | raster
     ColorSettings color;
+    // bench
+    BenchCommandOptions bench;
 };
 
 // Parses argv. Returns an exit code to stop with (0 after --help/--version,

@@ -1,0 +1,135 @@
+#include "bench_command.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <vector>
+
+#include "strahl/benchmark/bench_report.h"
+#include "strahl/benchmark/bench_scene.h"
+#include "strahl/benchmark/bench_suite.h"
+#include "strahl/core/error.h"
+#include "strahl/scene/scene_desc.h"
+
+namespace strahl::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> splitList(const std::string& text) {
+    std::vector<std::string> items;
+    std::stringstream in(text);
+    for (std::string item; std::getline(in, item, ',');) {
+        if (!item.empty()) items.push_back(item);
+    }
+    return items;
+}
+
+// The output files are checked before hours of measuring, not after.
+void checkOutputFolder(const std::string& file, const char* option) {
+    if (file.empty()) return;
+    const fs::path parent = fs::absolute(file).parent_path();
+    std::error_code ec;
+    if (!fs::is_directory(parent, ec))
+        fail(option, " ", file, ": the folder ", parent.string(), " does not exist");
+}
+
+}  // namespace
+
+CLI::App* addBenchCommand(CLI::App& app, BenchCommandOptions& o) {
+    CLI::App* bench = app.add_subcommand(
+        "bench",
+        "Benchmark Embree against the naive tracer and the rasterizer on a ladder of generated "
+        "meshes and on real models (see docs/benchmarks.md)");
+    bench->add_option("--ladder", o.ladder,
+                      "Generated mesh sizes in triangles, comma-separated (1000 or 1e3), or none. "
+                      "Default 1e2,1e3,1e4,1e5,1e6,1e7");
+    bench->add_option("--models", o.models,
+                      "Real models from the data folder, comma-separated, 'all' or 'none'. "
+                      "Default: all, if the data folder exists");
+    bench->add_option("--data", o.data,
+                      "The shared data folder (default $STRAHL_DATA, else ../shared/data)");
+    bench->add_option("--resolution", o.resolution, "Image side in pixels (default 512)")
+        ->check(CLI::Range(1, kMaxFilmSide));
+    bench->add_option("--threads", o.threads, "Worker threads; 0 = all cores (default)")
+        ->check(CLI::Range(0, 4096));
+    bench->add_option("--repeats", o.repeats,
+                      "Passes per Embree figure, the best kept (default 3)")
+        ->check(CLI::Range(1, 100));
+    bench->add_option("--naive-budget", o.naiveBudget,
+                      "Triangle tests the naive tracer may spend per scene; its ray sample is "
+                      "budget / triangles rays (default 2e9)")
+        ->check(CLI::Range(1.0, 1e15));
+    bench->add_flag("--no-raster", o.noRaster, "Do not time the rasterizer");
+    bench->add_option("--out", o.out, "Write the results as .csv or .json");
+    bench->add_option("--plot", o.plot, "Write the log-log plot of cost per ray as .svg");
+    bench->add_flag("-q,--quiet", o.quiet, "No progress lines");
+    return bench;
+}
+
+int runBench(const BenchCommandOptions& o) {
+    std::vector<size_t> ladder;
+    if (o.ladder != "none") {
+        for (const std::string& size : splitList(o.ladder)) ladder.push_back(parseBenchSize(size));
+    }
+    fs::path data = o.data;
+    if (data.empty()) {
+        const char* env = std::getenv("STRAHL_DATA");
+        data = env && *env ? fs::path(env) : fs::path("../shared/data");
+    }
+    std::vector<std::string> models;
+    std::error_code ec;
+    if (o.models.empty()) {
+        if (fs::is_directory(data, ec))
+            models = {"all"};
+        else if (!o.quiet)
+            std::fprintf(stderr, "strahl: note: no data folder at %s: real models skipped "
+                                 "(give --data DIR)\n", data.string().c_str());
+    } else if (o.models != "none") {
+        models = splitList(o.models);
+    }
+    const std::vector<BenchSceneSpec> scenes = benchScenes(ladder, models, data);
+    if (scenes.empty()) fail("bench: nothing to measure (--ladder none and --models none)");
+    checkOutputFolder(o.out, "--out");
+    checkOutputFolder(o.plot, "--plot");
+    if (!o.out.empty()) {
+        const std::string ext = fs::path(o.out).extension().string();
+        if (ext != ".csv" && ext != ".json")
+            fail("--out ", o.out, ": unknown results format '", ext, "' (use .csv or .json)");
+    }
+    if (!o.plot.empty() && fs::path(o.plot).extension() != ".svg")
+        fail("--plot ", o.plot, ": the plot is written as SVG: give a .svg file");
+
+    BenchOptions options;
+    options.resolution = o.resolution;
+    options.threads = o.threads;
+    options.repeats = o.repeats;
+    options.naiveBudget = o.naiveBudget;
+    options.raster = !o.noRaster;
+
+    std::vector<BenchRow> rows;
+    for (const BenchSceneSpec& spec : scenes) {
+        rows.push_back(runBenchScene(spec, options, [&](const std::string& what) {
+            if (!o.quiet) std::fprintf(stderr, "bench: %s\n", what.c_str());
+        }));
+    }
+    const BenchFits fits = fitBench(rows);
+    std::printf("strahl bench: %dx%d camera rays per scene, %d threads (0 = all), best of %d\n",
+                o.resolution, o.resolution, o.threads, o.repeats);
+    printBenchTable(stdout, rows, fits);
+    if (!o.out.empty()) {
+        writeBenchResults(o.out, rows, fits, options);
+        std::printf("wrote %s\n", o.out.c_str());
+    }
+    if (!o.plot.empty()) {
+        writeBenchPlot(o.plot, rows, fits);
+        std::printf("wrote %s\n", o.plot.c_str());
+    }
+    return 0;
+}
+
+}  // namespace strahl::app
