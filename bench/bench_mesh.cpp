@@ -1,5 +1,6 @@
 #include "bench_mesh.h"
 
+#include <cstring>
 #include <filesystem>
 #include <unordered_map>
 
@@ -67,6 +68,18 @@ TriangleMesh benchmarkMesh(const std::string& path, size_t minTriangles, std::st
     if (levels) description += " subdivided " + std::to_string(levels) + "x";
     mesh.reservePadding();
     return mesh;
+}
+
+std::string takeMeshOption(int& argc, char** argv) {
+    for (int i = 1; i + 1 < argc; ++i) {
+        if (std::strcmp(argv[i], "--mesh") == 0) {
+            std::string path = argv[i + 1];
+            for (int j = i; j + 2 <= argc; ++j) argv[j] = argv[j + 2];
+            argc -= 2;
+            return path;
+        }
+    }
+    return {};
 }
 
 }  // namespace strahl::bench

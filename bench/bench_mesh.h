@@ -16,4 +16,8 @@ TriangleMesh subdivideMidpoints(const TriangleMesh& mesh);
 // receives what was used.
 TriangleMesh benchmarkMesh(const std::string& path, size_t minTriangles, std::string& description);
 
+// Removes "--mesh PATH" from the command line (before Google Benchmark sees
+// it) and returns PATH, or "" if absent.
+std::string takeMeshOption(int& argc, char** argv);
+
 }  // namespace strahl::bench

@@ -15,8 +15,8 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <cstring>
+#include <cstdio>
 #include <map>
 #include <string>
 
@@ -148,15 +148,7 @@ private:
 
 int main(int argc, char** argv) {
     using namespace strahl::bench;
-    std::string meshPath;
-    for (int i = 1; i + 1 < argc; ++i) {
-        if (std::strcmp(argv[i], "--mesh") == 0) {
-            meshPath = argv[i + 1];
-            for (int j = i; j + 2 <= argc; ++j) argv[j] = argv[j + 2];
-            argc -= 2;
-            break;
-        }
-    }
+    const std::string meshPath = takeMeshOption(argc, argv);
     benchmark::Initialize(&argc, argv);
     const Fixture& f = fixture(meshPath);
     std::printf("mesh: %s, %zu triangles; image %dx%d; packets of %d\n", f.meshDescription.c_str(),

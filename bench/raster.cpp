@@ -14,7 +14,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <cstring>
 #include <string>
 #include <vector>
 
@@ -117,15 +116,7 @@ double fastest(const std::vector<double>& v) {
 
 int main(int argc, char** argv) {
     using namespace strahl::bench;
-    std::string meshPath;
-    for (int i = 1; i + 1 < argc; ++i) {
-        if (std::strcmp(argv[i], "--mesh") == 0) {
-            meshPath = argv[i + 1];
-            for (int j = i; j + 2 <= argc; ++j) argv[j] = argv[j + 2];
-            argc -= 2;
-            break;
-        }
-    }
+    const std::string meshPath = takeMeshOption(argc, argv);
     benchmark::Initialize(&argc, argv);
     const Fixture& f = fixture(meshPath);
     std::printf(
