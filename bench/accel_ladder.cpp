@@ -7,13 +7,13 @@
 
 #include <benchmark/benchmark.h>
 
-#include <cmath>
 #include <map>
 #include <memory>
 #include <vector>
 
 #include "strahl/accel/accel.h"
 #include "strahl/benchmark/bench_scene.h"
+#include "strahl/benchmark/bench_suite.h"
 #include "strahl/camera/camera.h"
 #include "strahl/reference/naive_accel.h"
 
@@ -28,8 +28,7 @@ struct Ladder {
     std::vector<Ray> rays;
 };
 
-// One fixture per size, built on first use. The camera looks at the mesh's
-// bounding sphere from the front, as strahl bench's does.
+// One fixture per size, built on first use, seen as strahl bench sees it.
 const Ladder& ladder(size_t triangles) {
     static std::map<size_t, std::unique_ptr<Ladder>> cache;
     auto& slot = cache[triangles];
@@ -39,15 +38,7 @@ const Ladder& ladder(size_t triangles) {
         const TriangleMesh* meshes[] = {&slot->mesh};
         slot->embree = buildEmbreeAccel(meshes, {});
         slot->naive = buildNaiveAccel(meshes);
-        const Bounds3 b = slot->mesh.bounds();
-        const float radius = 0.5f * glm::length(b.diagonal());
-        const Vec3 eye = b.center() + (radius / std::sin(glm::radians(20.0f))) *
-                                          glm::normalize(Vec3(0.55f, 0.45f, 1.0f));
-        const float d = 0.01f * glm::length(eye - b.center());
-        const Camera camera(CameraFrame::lookAt(eye, b.center(), Vec3(0, 1, 0)),
-                            Projection::Perspective,
-                            Camera::windowFromFov(glm::radians(40.0f), d, kSide, kSide), d, kSide,
-                            kSide);
+        const Camera camera = benchView(slot->mesh.bounds(), kSide).camera;
         for (int y = 0; y < kSide; ++y)
             for (int x = 0; x < kSide; ++x)
                 slot->rays.push_back(camera.generateRay(float(x) + 0.5f, float(y) + 0.5f));

@@ -70,6 +70,13 @@ TriangleMesh benchmarkMesh(const std::string& path, size_t minTriangles, std::st
     return mesh;
 }
 
+Camera frontCamera(const Bounds3& bounds, int size) {
+    const float radius = 0.5f * glm::length(bounds.diagonal());
+    const Vec3 eye = bounds.center() + Vec3(0.0f, 0.0f, 1.5f * radius);
+    return Camera(CameraFrame::lookAt(eye, bounds.center(), Vec3(0, 1, 0)), Projection::Perspective,
+                  Camera::windowFromFov(glm::radians(40.0f), 1.0f, size, size), 1.0f, size, size);
+}
+
 std::string takeMeshOption(int& argc, char** argv) {
     for (int i = 1; i + 1 < argc; ++i) {
         if (std::strcmp(argv[i], "--mesh") == 0) {

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "strahl/camera/camera.h"
 #include "strahl/geometry/triangle_mesh.h"
 
 namespace strahl::bench {
@@ -15,6 +16,11 @@ TriangleMesh subdivideMidpoints(const TriangleMesh& mesh);
 // sphere) and subdivides until it has at least minTriangles. `description`
 // receives what was used.
 TriangleMesh benchmarkMesh(const std::string& path, size_t minTriangles, std::string& description);
+
+// A kSize x kSize perspective view (fov 40°, d = 1) of `bounds` from the front
+// (+z) at 1.5 bounding radii: a mesh fills the frame, so the figure of merit
+// is traversal of a dense mesh, not rays that miss it.
+Camera frontCamera(const Bounds3& bounds, int size);
 
 // Removes "--mesh PATH" from the command line (before Google Benchmark sees
 // it) and returns PATH, or "" if absent.

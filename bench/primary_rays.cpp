@@ -50,15 +50,7 @@ Fixture& fixture(const std::string& meshPath = {}) {
         fx.world.shapes.push_back(std::move(g));
         const TriangleMesh* meshes[] = {&fx.world.shapes[0].mesh};
         fx.world.accel = buildEmbreeAccel(meshes, {});
-        // Frame the bounding box from the front so the mesh fills the image: the
-        // figure of merit is traversal of a dense mesh, not rays that miss it.
-        const Bounds3 b = fx.world.bounds();
-        const float radius = 0.5f * glm::length(b.diagonal());
-        const Vec3 eye = b.center() + Vec3(0.0f, 0.0f, 1.5f * radius);
-        fx.camera = Camera(CameraFrame::lookAt(eye, b.center(), Vec3(0, 1, 0)),
-                           Projection::Perspective,
-                           Camera::windowFromFov(glm::radians(40.0f), 1.0f, kSize, kSize), 1.0f,
-                           kSize, kSize);
+        fx.camera = frontCamera(fx.world.bounds(), kSize);
         fx.width = resolvePacketWidth(PacketMode::Auto, *fx.world.accel);
         return fx;
     }();
@@ -71,15 +63,8 @@ void bareLoop(benchmark::State& state) {
     const TileRayGenerator gen(f.camera, 0, 1);
     const std::vector<PixelRect> tileList = cutTiles(PixelRect{0, 0, kSize, kSize}, kTile);
     // Ray generation is outside the timed loop: only traversal is measured.
-    std::vector<std::vector<CameraPacket<N>>> packets(tileList.size());
-    for (size_t i = 0; i < tileList.size(); ++i) {
-        const PixelRect& t = tileList[i];
-        for (int by = t.y0; by < t.y1; by += CameraPacket<N>::kBlockHeight)
-            for (int bx = t.x0; bx < t.x1; bx += CameraPacket<N>::kBlockWidth) {
-                packets[i].emplace_back();
-                gen.fillPacket(t, bx, by, 0, packets[i].back());
-            }
-    }
+    std::vector<std::vector<CameraPacket<N>>> packets;
+    for (const PixelRect& t : tileList) packets.push_back(gen.tilePackets<N>(t, 0));
     for (auto _ : state) {
         tbb::parallel_for(
             tbb::blocked_range<size_t>(0, packets.size(), 1),

@@ -49,12 +49,7 @@ Fixture& fixture(const std::string& meshPath = {}) {
         BuildTimings timings;
         fx.world = buildWorld(desc, BuildOptions{}, &timings);
         fx.bvhSeconds = timings.bvhSeconds;
-        const Bounds3 b = fx.world.bounds();
-        const float radius = 0.5f * glm::length(b.diagonal());
-        const Vec3 eye = b.center() + Vec3(0.0f, 0.0f, 1.5f * radius);
-        fx.camera = Camera(
-            CameraFrame::lookAt(eye, b.center(), Vec3(0, 1, 0)), Projection::Perspective,
-            Camera::windowFromFov(glm::radians(40.0f), 1.0f, kSize, kSize), 1.0f, kSize, kSize);
+        fx.camera = frontCamera(fx.world.bounds(), kSize);
         return fx;
     }();
     return f;

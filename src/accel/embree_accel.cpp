@@ -110,7 +110,6 @@ public:
             attach(geom, static_cast<unsigned>(i), scene.shapes[i].bounds(), "adding a shape");
         }
 
-        std::vector<RTCScene> prototypes;
         std::vector<Bounds3> prototypeBounds;
         for (const std::vector<ShapeRef>& shapes : scene.prototypes) {
             RTCScene prototype = newPrototypeScene();
@@ -121,17 +120,16 @@ public:
                 bounds.expand(shapes[i].bounds());
             }
             commitPrototype(prototype);
-            prototypes.push_back(prototype);
             prototypeBounds.push_back(bounds);
         }
 
         for (size_t k = 0; k < scene.instances.size(); ++k) {
             const AccelInstance& instance = scene.instances[k];
-            if (instance.prototype >= prototypes.size())
+            if (instance.prototype >= prototypeCount())
                 fail("instance ", k, ": prototype ", instance.prototype, " does not exist (",
-                     prototypes.size(), " prototypes)");
+                     prototypeCount(), " prototypes)");
             RTCGeometry geom = rtcNewGeometry(device(), RTC_GEOMETRY_TYPE_INSTANCE);
-            rtcSetGeometryInstancedScene(geom, prototypes[instance.prototype]);
+            rtcSetGeometryInstancedScene(geom, prototypeScene(instance.prototype));
             // glm::mat4 is column-major with the affine last row 0 0 0 1.
             rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR,
                                     &instance.objectToWorld[0][0]);

@@ -51,8 +51,11 @@ protected:
     // The same into another scene (an instanced prototype); bounds not tracked.
     void attachTo(RTCScene scene, RTCGeometry geometry, unsigned geomID, const char* what);
     // A new empty scene with the top-level scene's build settings, owned (and
-    // released) by this accelerator, for prototypes that instances place.
+    // released) by this accelerator, for prototypes that instances place. The
+    // i-th made is prototypeScene(i).
     RTCScene newPrototypeScene();
+    RTCScene prototypeScene(size_t i) const { return prototypes_[i]; }
+    size_t prototypeCount() const { return prototypes_.size(); }
     // Builds a prototype scene's BVH.
     void commitPrototype(RTCScene scene);
     // Builds the BVH over everything attached.

@@ -29,13 +29,16 @@ std::vector<std::string> splitList(const std::string& text) {
     return items;
 }
 
-// The output files are checked before hours of measuring, not after.
-void checkOutputFolder(const std::string& file, const char* option) {
+// Runs `check` on an output file given with `option`, naming the option in
+// its message.
+void checkOutput(const char* option, const std::string& file,
+                 void (*check)(const std::filesystem::path&)) {
     if (file.empty()) return;
-    const fs::path parent = fs::absolute(file).parent_path();
-    std::error_code ec;
-    if (!fs::is_directory(parent, ec))
-        fail(option, " ", file, ": the folder ", parent.string(), " does not exist");
+    try {
+        check(file);
+    } catch (const Error& e) {
+        fail(option, " ", e.what());
+    }
 }
 
 }  // namespace
@@ -94,15 +97,9 @@ int runBench(const BenchCommandOptions& o) {
     }
     const std::vector<BenchSceneSpec> scenes = benchScenes(ladder, models, data);
     if (scenes.empty()) fail("bench: nothing to measure (--ladder none and --models none)");
-    checkOutputFolder(o.out, "--out");
-    checkOutputFolder(o.plot, "--plot");
-    if (!o.out.empty()) {
-        const std::string ext = fs::path(o.out).extension().string();
-        if (ext != ".csv" && ext != ".json")
-            fail("--out ", o.out, ": unknown results format '", ext, "' (use .csv or .json)");
-    }
-    if (!o.plot.empty() && fs::path(o.plot).extension() != ".svg")
-        fail("--plot ", o.plot, ": the plot is written as SVG: give a .svg file");
+    // The output files are checked before hours of measuring, not after.
+    checkOutput("--out", o.out, &checkBenchResultsFile);
+    checkOutput("--plot", o.plot, &checkBenchPlotFile);
 
     BenchOptions options;
     options.resolution = o.resolution;

@@ -78,6 +78,38 @@ std::vector<const BenchRow*> ladderRows(std::span<const BenchRow> rows) {
 
 }  // namespace
 
+namespace {
+
+void requireResultsExtension(const fs::path& file) {
+    const std::string ext = lowerExtension(file);
+    if (ext != ".csv" && ext != ".json")
+        fail(file.string(), ": unknown results format '", ext, "' (use .csv or .json)");
+}
+
+void requirePlotExtension(const fs::path& file) {
+    if (lowerExtension(file) != ".svg")
+        fail(file.string(), ": the plot is written as SVG: give a .svg file");
+}
+
+void requireFolder(const fs::path& file) {
+    const fs::path parent = fs::absolute(file).parent_path();
+    std::error_code ec;
+    if (!fs::is_directory(parent, ec))
+        fail(file.string(), ": the folder ", parent.string(), " does not exist");
+}
+
+}  // namespace
+
+void checkBenchResultsFile(const fs::path& file) {
+    requireResultsExtension(file);
+    requireFolder(file);
+}
+
+void checkBenchPlotFile(const fs::path& file) {
+    requirePlotExtension(file);
+    requireFolder(file);
+}
+
 BenchFits fitBench(std::span<const BenchRow> rows) {
     std::vector<double> n, naive, embree;
     for (const BenchRow* row : ladderRows(rows)) {
@@ -120,8 +152,8 @@ void printBenchTable(std::FILE* out, std::span<const BenchRow> rows, const Bench
 
 void writeBenchResults(const fs::path& file, std::span<const BenchRow> rows, const BenchFits& fits,
                        const BenchOptions& options) {
-    const std::string ext = lowerExtension(file);
-    if (ext == ".csv") {
+    requireResultsExtension(file);
+    if (lowerExtension(file) == ".csv") {
         std::ostringstream csv;
         csv << "scene,generated,triangles,vertices,load_s,input_mb,build_s,build_mtris_per_s,"
                "mesh_mib,bvh_mib,primary_rays,primary_hits,packet_width,packet_mrays,single_mrays,"
@@ -141,8 +173,6 @@ void writeBenchResults(const fs::path& file, std::span<const BenchRow> rows, con
         writeTextAtomically(file, csv.str());
         return;
     }
-    if (ext != ".json")
-        fail(file.string(), ": unknown results format '", ext, "' (use .csv or .json)");
     nlohmann::ordered_json j;
     j["options"] = {{"resolution", options.resolution},
                     {"threads", options.threads},
@@ -206,8 +236,7 @@ struct Axes {
 }  // namespace
 
 void writeBenchPlot(const fs::path& file, std::span<const BenchRow> rows, const BenchFits& fits) {
-    if (lowerExtension(file) != ".svg")
-        fail(file.string(), ": the plot is written as SVG: give a .svg file");
+    requirePlotExtension(file);
     double nMin = 1e300, nMax = 0, cMin = 1e300, cMax = 0;
     for (const BenchRow& r : rows) {
         for (double c : {r.naiveNanosecondsPerRay(), r.singleNanosecondsPerRay()}) {

@@ -33,30 +33,6 @@ double secondsSince(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-constexpr float kFovDegrees = 40.0f;
-
-// The camera looks at the bounding sphere's centre from a fixed direction
-// (above, right, in front), far enough that the whole sphere is in view; the
-// image plane sits at 1% of that distance so nothing of the model is cut off.
-// The light is above and to the left, two radii out.
-struct Framing {
-    Camera camera;
-    Vec3 light;
-};
-
-Framing frame(const Bounds3& bounds, int resolution) {
-    const Vec3 centre = bounds.center();
-    const float radius = std::max(0.5f * glm::length(bounds.diagonal()), 1e-6f);
-    const float distance = radius / std::sin(glm::radians(0.5f * kFovDegrees));
-    const Vec3 eye = centre + distance * glm::normalize(Vec3(0.55f, 0.45f, 1.0f));
-    const float d = 0.01f * distance;
-    const Camera camera(CameraFrame::lookAt(eye, centre, Vec3(0.0f, 1.0f, 0.0f)),
-                        Projection::Perspective,
-                        Camera::windowFromFov(glm::radians(kFovDegrees), d, resolution, resolution),
-                        d, resolution, resolution);
-    return Framing{camera, centre + 2.0f * radius * glm::normalize(Vec3(-0.5f, 1.5f, 0.8f))};
-}
-
 // Runs pass() `repeats` times and returns the shortest time.
 template <typename Pass>
 double bestOf(int repeats, Pass&& pass) {
@@ -78,12 +54,8 @@ std::vector<CameraPacket<N>> makePackets(const Camera& camera, int resolution) {
     const TileRayGenerator generator(camera, 0, 1);
     std::vector<CameraPacket<N>> packets;
     for (const PixelRect& tile : cutTiles(PixelRect{0, 0, resolution, resolution}, 32)) {
-        for (int by = tile.y0; by < tile.y1; by += CameraPacket<N>::kBlockHeight) {
-            for (int bx = tile.x0; bx < tile.x1; bx += CameraPacket<N>::kBlockWidth) {
-                packets.emplace_back();
-                generator.fillPacket(tile, bx, by, 0, packets.back());
-            }
-        }
+        std::vector<CameraPacket<N>> more = generator.tilePackets<N>(tile, 0);
+        packets.insert(packets.end(), more.begin(), more.end());
     }
     return packets;
 }
@@ -190,6 +162,20 @@ LoadedScene loadScene(const BenchSceneSpec& spec) {
 
 }  // namespace
 
+BenchView benchView(const Bounds3& bounds, int resolution) {
+    constexpr float kFovDegrees = 40.0f;
+    const Vec3 centre = bounds.center();
+    const float radius = std::max(0.5f * glm::length(bounds.diagonal()), 1e-6f);
+    const float distance = radius / std::sin(glm::radians(0.5f * kFovDegrees));
+    const Vec3 eye = centre + distance * glm::normalize(Vec3(0.55f, 0.45f, 1.0f));
+    const float d = 0.01f * distance;
+    const Camera camera(CameraFrame::lookAt(eye, centre, Vec3(0.0f, 1.0f, 0.0f)),
+                        Projection::Perspective,
+                        Camera::windowFromFov(glm::radians(kFovDegrees), d, resolution, resolution),
+                        d, resolution, resolution);
+    return BenchView{camera, centre + 2.0f * radius * glm::normalize(Vec3(-0.5f, 1.5f, 0.8f))};
+}
+
 BenchRow runBenchScene(const BenchSceneSpec& spec, const BenchOptions& options,
                        const std::function<void(const std::string&)>& status) {
     auto say = [&](const char* what) {
@@ -224,7 +210,7 @@ BenchRow runBenchScene(const BenchSceneSpec& spec, const BenchOptions& options,
         const Accel& accel = *world.accel;
 
         const int res = options.resolution;
-        const Framing framing = frame(world.bounds(), res);
+        const BenchView framing = benchView(world.bounds(), res);
         std::vector<Ray> cameraRays;
         cameraRays.reserve(size_t(res) * size_t(res));
         for (int y = 0; y < res; ++y)
@@ -240,7 +226,6 @@ BenchRow runBenchScene(const BenchSceneSpec& spec, const BenchOptions& options,
         const double packetTime = row.packetWidth == 16
                                       ? packetSeconds<16>(accel, framing.camera, res, options.repeats)
                                       : packetSeconds<8>(accel, framing.camera, res, options.repeats);
-        if (row.packetWidth == 1) row.packetWidth = 8;  // traced as 8-wide packets anyway
         row.packetMrays = mrays(cameraRays.size(), packetTime);
 
         say("tracing shadow and diffuse rays");

@@ -21,7 +21,9 @@ public:
     explicit Flattener(const SceneDesc& desc)
         : desc_(desc),
           prototypeOf_(desc.groups.size(), kNoPrototype),
-          counts_(desc.groups.size(), kUncounted) {}
+          counts_(desc.groups.size(), kUncounted) {
+        for (const GroupDesc& group : desc.groups) ownShapes_.push_back(hasOwnShapes(group));
+    }
 
     FlatInstances run() {
         // Count first, so an explosive nesting is rejected before anything is
@@ -50,7 +52,7 @@ private:
     // Instances one placement of `group` expands to (memoised).
     uint64_t count(size_t group) {
         if (counts_[group] != kUncounted) return counts_[group];
-        uint64_t n = hasOwnShapes(desc_.groups[group]) ? 1 : 0;
+        uint64_t n = ownShapes_[group] ? 1 : 0;
         for (const ShapeDesc& shape : desc_.groups[group].shapes) {
             if (shape.kind == ShapeKind::Instance) n = cappedSum(n, count(shape.group));
         }
@@ -58,7 +60,7 @@ private:
     }
 
     void place(size_t group, const Mat4& toWorld) {
-        if (hasOwnShapes(desc_.groups[group]))
+        if (ownShapes_[group])
             result_.instances.push_back(FlatInstance{prototype(group), toWorld});
         for (const ShapeDesc& shape : desc_.groups[group].shapes) {
             if (shape.kind == ShapeKind::Instance) place(shape.group, toWorld * shape.transform);
@@ -74,6 +76,7 @@ private:
     }
 
     const SceneDesc& desc_;
+    std::vector<bool> ownShapes_;  // per group: holds shapes besides instances
     std::vector<uint32_t> prototypeOf_;
     std::vector<uint64_t> counts_;
     FlatInstances result_;

@@ -37,12 +37,6 @@ constexpr int64_t kMaxSpp = 65536;
 // is undefined.
 constexpr float kMinUpSine = 1e-6f;
 
-// The direction of a non-zero finite vector, exact also for components whose
-// squares over- or underflow (glm::normalize of 1e20 or 1e-30 is not).
-Vec3 unitVector(const Vec3& v) {
-    return glm::normalize(v / maxComponent(glm::abs(v)));
-}
-
 bool hasExtension(const fs::path& path, std::span<const std::string_view> extensions) {
     std::string ext = path.extension().string();
     for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));

@@ -12,12 +12,6 @@ namespace {
 // space. Below this the transform is singular.
 constexpr double kMinDeterminantRatio = 1e-6;
 
-// The direction of a non-zero finite vector, exact also for components whose
-// squares over- or underflow (glm::normalize of 1e20 or 1e-30 is not).
-Vec3 unitVector(const Vec3& v) {
-    return glm::normalize(v / maxComponent(glm::abs(v)));
-}
-
 Mat4 parseTransformOp(const JsonValue& op) {
     if (!op.raw().is_object() || op.raw().size() != 1)
         op.fail("expected an object with exactly one of translate, scale, rotate, matrix, got ",

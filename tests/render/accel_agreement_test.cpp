@@ -89,7 +89,7 @@ TEST_P(AccelAgreement, ImagesAgree) {
 
 INSTANTIATE_TEST_SUITE_P(RegressionScenes, AccelAgreement,
                          ::testing::ValuesIn(test::regressionScenes()),
-                         [](const auto& info) { return info.param; });
+                         test::sceneTestName);
 
 }  // namespace
 }  // namespace strahl

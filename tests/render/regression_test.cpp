@@ -70,7 +70,7 @@ TEST_P(Regression, MatchesReference) {
 // Every scene in the folder: a new scene without a reference fails until its
 // reference is made.
 INSTANTIATE_TEST_SUITE_P(Scenes, Regression, ::testing::ValuesIn(test::regressionScenes()),
-                         [](const auto& info) { return info.param; });
+                         test::sceneTestName);
 
 TEST(RegressionSet, CoversTheScenesItWasMadeFor) {
     const std::vector<std::string> scenes = test::regressionScenes();

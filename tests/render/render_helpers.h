@@ -2,6 +2,8 @@
 // Rendering a SceneDesc in a test, and the list of regression scenes: shared by
 // the render-module tests that compare images.
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <string>
@@ -46,6 +48,11 @@ inline std::vector<std::string> regressionScenes() {
     }
     std::sort(names.begin(), names.end());
     return names;
+}
+
+// Names parameterised tests after their scene ("…/instances", not "…/5").
+inline std::string sceneTestName(const ::testing::TestParamInfo<std::string>& scene) {
+    return scene.param;
 }
 
 }  // namespace strahl::test

@@ -29,6 +29,12 @@ void printBenchTable(std::FILE* out, std::span<const BenchRow> rows, const Bench
 void writeBenchResults(const std::filesystem::path& file, std::span<const BenchRow> rows,
                        const BenchFits& fits, const BenchOptions& options);
 
+// Whether writeBenchResults / writeBenchPlot could write `file`: the right
+// extension (the same check and message as theirs) and an existing folder. A
+// run calls these to refuse bad outputs before anything is measured.
+void checkBenchResultsFile(const std::filesystem::path& file);
+void checkBenchPlotFile(const std::filesystem::path& file);
+
 // The plot as SVG (the extension must be .svg), written the same way.
 void writeBenchPlot(const std::filesystem::path& file, std::span<const BenchRow> rows,
                     const BenchFits& fits);

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "strahl/benchmark/bench_scene.h"
+#include "strahl/camera/camera.h"
 
 namespace strahl {
 
@@ -60,6 +61,17 @@ struct BenchRow {
     double singleNanosecondsPerRay() const { return singleMrays > 0 ? 1e3 / singleMrays : 0.0; }
     double packetNanosecondsPerRay() const { return packetMrays > 0 ? 1e3 / packetMrays : 0.0; }
 };
+
+// The view every bench scene is traced from: the camera looks at the bounding
+// box's centre from a fixed direction (above, right, in front), far enough
+// that the box's bounding sphere fits a 40° field of view, with the image
+// plane at 1% of that distance so nothing of the model is cut off; the light
+// is above and to the left, two radii out.
+struct BenchView {
+    Camera camera;
+    Vec3 light;
+};
+BenchView benchView(const Bounds3& bounds, int resolution);
 
 // Runs one scene. `status` (optional) is told what is being measured.
 BenchRow runBenchScene(const BenchSceneSpec& spec, const BenchOptions& options,

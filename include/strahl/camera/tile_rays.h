@@ -12,6 +12,7 @@
 // the camera's draws, is handed to the integrator.
 
 #include <cstdint>
+#include <vector>
 
 #include "strahl/camera/camera.h"
 #include "strahl/core/packet.h"
@@ -44,6 +45,11 @@ public:
     template <int N>
     int fillPacket(const PixelRect& tile, int bx, int by, int s, CameraPacket<N>& packet) const;
 
+    // Every packet of `tile` for sample `s`, blocks row by row: what fillPacket
+    // makes, kept, for callers that trace the same rays more than once.
+    template <int N>
+    std::vector<CameraPacket<N>> tilePackets(const PixelRect& tile, int s) const;
+
 private:
     const Camera& camera_;
     uint64_t seed_;
@@ -69,6 +75,18 @@ int TileRayGenerator::fillPacket(const PixelRect& tile, int bx, int by, int s,
         }
     }
     return active;
+}
+
+template <int N>
+std::vector<CameraPacket<N>> TileRayGenerator::tilePackets(const PixelRect& tile, int s) const {
+    std::vector<CameraPacket<N>> packets;
+    for (int by = tile.y0; by < tile.y1; by += CameraPacket<N>::kBlockHeight) {
+        for (int bx = tile.x0; bx < tile.x1; bx += CameraPacket<N>::kBlockWidth) {
+            packets.emplace_back();
+            fillPacket(tile, bx, by, s, packets.back());
+        }
+    }
+    return packets;
 }
 
 }  // namespace strahl

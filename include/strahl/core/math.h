@@ -26,6 +26,10 @@ inline bool isFinite(const Vec3& v) {
 
 inline float maxComponent(const Vec3& v) { return glm::max(v.x, glm::max(v.y, v.z)); }
 
+// The direction of a non-zero finite vector, exact also for components whose
+// squares over- or underflow (glm::normalize of 1e20 or 1e-30 is not).
+inline Vec3 unitVector(const Vec3& v) { return glm::normalize(v / maxComponent(glm::abs(v))); }
+
 // Right-handed orthonormal basis around a unit vector n (Duff et al. 2017,
 // "Building an Orthonormal Basis, Revisited": branch-free, no singularity).
 inline void orthonormalBasis(const Vec3& n, Vec3& b1, Vec3& b2) {
