@@ -15,45 +15,11 @@
 #include "strahl/geometry/implicit_formula.h"
 #include "strahl/geometry/implicit_root_finder.h"
 #include "strahl/geometry/implicit_shape.h"
+#include "ray_probes.h"
 #include "test_support.h"
 
 namespace strahl {
 namespace {
-
-DVec3 randomPoint(std::mt19937& rng, double extent) {
-    std::uniform_real_distribution<double> u(-extent, extent);
-    return DVec3(u(rng), u(rng), u(rng));
-}
-
-DVec3 randomDirection(std::mt19937& rng) {
-    std::normal_distribution<double> n;
-    for (;;) {
-        const DVec3 d(n(rng), n(rng), n(rng));
-        if (glm::length(d) > 1e-3) return glm::normalize(d);
-    }
-}
-
-// A ray from a random point at `distance` from the origin towards a random
-// point of the cube [-extent, extent]³.
-Ray rayTowards(std::mt19937& rng, double distance, double extent) {
-    Ray ray;
-    ray.origin = Vec3(randomDirection(rng) * distance);
-    ray.dir = Vec3(glm::normalize(randomPoint(rng, extent) - DVec3(ray.origin)));
-    return ray;
-}
-
-// The nearest hit over all of a shape's cells, as an accelerator would find
-// it: each cell is asked with tfar shrunk to the best hit so far.
-Hit nearestHit(const ImplicitShape& shape, const Ray& ray) {
-    Hit best;
-    for (uint32_t prim = 0; prim < shape.primitiveCount(); ++prim) {
-        Ray clipped = ray;
-        clipped.tfar = best.t;
-        Hit hit;
-        if (shape.intersect(clipped, prim, hit)) best = hit;
-    }
-    return best;
-}
 
 // Every built-in (and CSG, formula) with a point scale for sampling.
 struct Named {

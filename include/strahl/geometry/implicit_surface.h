@@ -27,15 +27,10 @@
 #include "strahl/core/bounds.h"
 #include "strahl/core/dual.h"
 #include "strahl/core/interval.h"
+#include "strahl/core/point3.h"
 
 namespace strahl {
 
-using DVec3 = glm::dvec3;
-
-template <class T>
-struct Point3 {
-    T x, y, z;
-};
 using IntervalBox = Point3<num::Interval>;
 
 class ImplicitSurface {

@@ -1,0 +1,75 @@
+#include "strahl/geometry/parametric_surface.h"
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "strahl/core/error.h"
+
+namespace strahl {
+
+namespace {
+
+bool finite(const DVec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+DVec3 toVec(const Point3<double>& p) { return DVec3(p.x, p.y, p.z); }
+
+}  // namespace
+
+DVec3 ParametricSurface::point(uint32_t patch, double u, double v) const {
+    return toVec(evaluate(patch, u, v));
+}
+
+SurfacePoint ParametricSurface::automaticPartials(uint32_t patch, double u, double v) const {
+    const Point3<Dual2> f = evaluate(patch, Dual2::variable(u, 0), Dual2::variable(v, 1));
+    SurfacePoint s;
+    s.p = DVec3(f.x.v, f.y.v, f.z.v);
+    s.dpdu = DVec3(f.x.d[0], f.y.d[0], f.z.d[0]);
+    s.dpdv = DVec3(f.x.d[1], f.y.d[1], f.z.d[1]);
+    return s;
+}
+
+DVec3 ParametricSurface::normal(uint32_t patch, double u, double v) const {
+    // A cross product shorter than this fraction of |∂u f|·|∂v f| (partials
+    // parallel to 8 digits), or with a zero partial, is a singular point: its
+    // direction is rounding noise, so take the limit from inside instead.
+    constexpr double kSingular = 1e-8;
+    const ParamDomain& dom = domain();
+    const double cu = 0.5 * (dom.u0 + dom.u1), cv = 0.5 * (dom.v0 + dom.v1);
+    // Steps towards the centre, as a fraction of the way there: the first is
+    // small enough that the normal of a smooth surface moves by ~1e-6, the
+    // later ones get away from a singular curve (a cone's apex circle) that
+    // the first did not leave.
+    for (const double step : {0.0, 1e-6, 1e-4, 1e-2}) {
+        const SurfacePoint s = partials(patch, u + step * (cu - u), v + step * (cv - v));
+        const DVec3 n = glm::cross(s.dpdu, s.dpdv);
+        const double len = glm::length(n);
+        const double scale = glm::length(s.dpdu) * glm::length(s.dpdv);
+        if (finite(n) && len > kSingular * scale && len > 0.0) return n / len;
+    }
+    return DVec3(0.0);
+}
+
+void validateParametricSurface(const ParametricSurface& surface) {
+    const ParamDomain& d = surface.domain();
+    if (!(std::isfinite(d.u0) && std::isfinite(d.u1) && std::isfinite(d.v0) && std::isfinite(d.v1)))
+        fail(surface.describe(), ": the domain is not finite");
+    if (!(d.u0 < d.u1)) fail(surface.describe(), ": the domain of u is empty or inverted [", d.u0, ", ", d.u1, "]");
+    if (!(d.v0 < d.v1)) fail(surface.describe(), ": the domain of v is empty or inverted [", d.v0, ", ", d.v1, "]");
+    if (surface.patchCount() == 0) fail(surface.describe(), ": no patches");
+    // A 17 x 17 grid per patch (corners, edges, centre and between) catches a
+    // formula that is undefined on a whole line of its domain or at a corner.
+    constexpr int kSamples = 16;
+    for (uint32_t patch = 0; patch < surface.patchCount(); ++patch)
+        for (int j = 0; j <= kSamples; ++j)
+            for (int i = 0; i <= kSamples; ++i) {
+                const double u = d.u0 + d.width() * i / kSamples;
+                const double v = d.v0 + d.height() * j / kSamples;
+                const SurfacePoint s = surface.partials(patch, u, v);
+                if (!finite(s.p) || !finite(s.dpdu) || !finite(s.dpdv))
+                    fail(surface.describe(), ": not finite at (u, v) = (", u, ", ", v, ")",
+                         surface.patchCount() > 1 ? concat(" of patch ", patch) : std::string());
+            }
+}
+
+}  // namespace strahl
