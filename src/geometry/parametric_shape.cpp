@@ -100,17 +100,7 @@ ParametricShape::ParametricShape(ParametricSurfacePtr surface, const Mat4& objec
     if (!(options.relativeTolerance > 0.0 && options.relativeTolerance < 1e-2))
         fail("the tolerance must lie in (0, 0.01)");
 
-    // Extent of the surface, from its patch corners and centres.
-    const ParamDomain& dom = surface_->domain();
-    DVec3 lo(num::kInf), hi(-num::kInf);
-    for (uint32_t p = 0; p < surface_->patchCount(); ++p)
-        for (int j = 0; j <= 4; ++j)
-            for (int i = 0; i <= 4; ++i) {
-                const DVec3 x = surface_->point(p, dom.u0 + dom.width() * i / 4, dom.v0 + dom.height() * j / 4);
-                lo = glm::min(lo, x);
-                hi = glm::max(hi, x);
-            }
-    const double extent = std::max(glm::length(hi - lo), 1e-300);
+    const double extent = parametricExtent(*surface_);
     tolerance_ = options.relativeTolerance * extent;
 
     ParametricGridOptions gridOptions;
@@ -118,6 +108,7 @@ ParametricShape::ParametricShape(ParametricSurfacePtr surface, const Mat4& objec
     gridOptions.maxSegments = options.maxSegments;
     gridOptions.maxChordError = options.flatness * extent;
     const ParametricGrid grid = buildParametricGrid(*surface_, gridOptions);
+    const ParamDomain& dom = surface_->domain();
 
     for (uint32_t p = 0; p < grid.patches.size(); ++p) {
         const PatchGrid& g = grid.patches[p];
@@ -310,8 +301,10 @@ void ParametricShape::search(const Cell& cell, const Rect& rect, const DVec3 (&c
         double t0 = tnear, t1 = best.t;
         if (clipToBox(o, d, lo, hi, t0, t1)) quarters[count++] = {part, t0};
     }
-    std::sort(quarters, quarters + count,
-              [](const Quarter& a, const Quarter& b) { return a.entry < b.entry; });
+    // Nearest first (insertion sort: at most four).
+    for (int i = 1; i < count; ++i)
+        for (int j = i; j > 0 && quarters[j].entry < quarters[j - 1].entry; --j)
+            std::swap(quarters[j], quarters[j - 1]);
     for (int q = 0; q < count; ++q) {
         if (!(quarters[q].entry < best.t)) break;
         const Rect& part = quarters[q].rect;

@@ -50,6 +50,19 @@ DVec3 ParametricSurface::normal(uint32_t patch, double u, double v) const {
     return DVec3(0.0);
 }
 
+double parametricExtent(const ParametricSurface& surface) {
+    const ParamDomain& d = surface.domain();
+    DVec3 lo(num::kInf), hi(-num::kInf);
+    for (uint32_t p = 0; p < surface.patchCount(); ++p)
+        for (int j = 0; j <= 4; ++j)
+            for (int i = 0; i <= 4; ++i) {
+                const DVec3 x = surface.point(p, d.u0 + d.width() * i / 4, d.v0 + d.height() * j / 4);
+                lo = glm::min(lo, x);
+                hi = glm::max(hi, x);
+            }
+    return std::max(glm::length(hi - lo), 1e-300);
+}
+
 void validateParametricSurface(const ParametricSurface& surface) {
     const ParamDomain& d = surface.domain();
     if (!(std::isfinite(d.u0) && std::isfinite(d.u1) && std::isfinite(d.v0) && std::isfinite(d.v1)))

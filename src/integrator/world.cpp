@@ -21,7 +21,10 @@ size_t userPrimitivesOf(const std::vector<SceneShape>& shapes) {
 
 size_t memoryOf(const std::vector<SceneShape>& shapes) {
     size_t n = 0;
-    for (const SceneShape& s : shapes) n += s.user ? s.user->memoryBytes() : s.mesh.memoryBytes();
+    for (const SceneShape& s : shapes) {
+        n += s.user ? s.user->memoryBytes() : s.mesh.memoryBytes();
+        if (s.tessellated) n += s.tessellated->memoryBytes();
+    }
     return n;
 }
 
@@ -49,14 +52,14 @@ SceneInstance::SceneInstance(uint32_t prototypeIndex, const Mat4& toWorld)
 SurfaceInteraction World::interaction(const Ray& ray, const Hit& hit) const {
     const SceneInstance* inst = instance(hit);
     const SceneShape& s = shape(hit);
-    if (!inst) {
-        if (s.user) return s.user->interaction(ray, hit);
+    const auto local = [&](const Ray& r) {
+        if (s.user) return s.user->interaction(r, hit);
+        if (s.tessellated) return s.tessellated->interaction(s.mesh, hit.primID, hit.u, hit.v);
         return triangleInteraction(s.mesh, hit.primID, hit.u, hit.v);
-    }
-    const SurfaceInteraction local =
-        s.user ? s.user->interaction(transformRay(inst->worldToObject, ray), hit)
-               : triangleInteraction(s.mesh, hit.primID, hit.u, hit.v);
-    return transformInteraction(local, inst->objectToWorld, inst->normalToWorld);
+    };
+    if (!inst) return local(ray);
+    return transformInteraction(local(transformRay(inst->worldToObject, ray)), inst->objectToWorld,
+                                inst->normalToWorld);
 }
 
 AccelScene World::accelScene() const {

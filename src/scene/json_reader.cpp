@@ -263,4 +263,11 @@ std::string joinList(std::span<const std::string_view> items) {
     return list;
 }
 
+std::filesystem::path resolvePath(const std::filesystem::path& folder, const JsonValue& value) {
+    const std::string text = value.string();
+    if (text.empty()) value.fail("expected a path, got an empty string");
+    const std::filesystem::path path(text);
+    return (path.is_absolute() ? path : folder / path).lexically_normal();
+}
+
 }  // namespace strahl::scene_detail

@@ -6,6 +6,7 @@
 // error rather than a silently ignored setting.
 
 #include <array>
+#include <filesystem>
 #include <cstdint>
 #include <initializer_list>
 #include <span>
@@ -91,5 +92,9 @@ private:
 
 // "a, b, c": the items joined for error messages.
 std::string joinList(std::span<const std::string_view> items);
+
+// A path from the scene file: relative paths are relative to the scene file's
+// folder, absolute ones are kept. Fails on an empty string.
+std::filesystem::path resolvePath(const std::filesystem::path& folder, const JsonValue& value);
 
 }  // namespace strahl::scene_detail

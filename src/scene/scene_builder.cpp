@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <functional>
 #include <map>
 #include <sstream>
 
@@ -39,6 +40,72 @@ std::shared_ptr<const UserShape> makeImplicitShape(const SceneDesc& desc, const 
     try {
         return std::make_shared<ImplicitShape>(shape.implicitSurface, shape.transform,
                                                shape.implicitOptions);
+    } catch (const Error& e) {
+        fail(shapeSource(desc, shape), ": ", e.what());
+    }
+}
+
+// The longest object-space edge that spans `pixels` pixels of the camera's
+// image at an object-space point: a pixel's footprint grows with the distance
+// from the eye (perspective) or is constant (orthographic). Dividing by the
+// transform's largest stretch keeps the bound conservative in world space.
+std::function<double(const DVec3&)> edgeLengthFromCamera(const SceneDesc& desc, const Mat4& toWorld,
+                                                         double pixels, double extent) {
+    const Camera camera = buildCamera(desc.camera, desc.film.width, desc.film.height);
+    const ImageWindow& w = camera.window();
+    const double pixelSize = static_cast<double>(w.t - w.b) / desc.film.height;
+    const bool perspective = camera.projection() == Projection::Perspective;
+    const double perUnitDistance = pixelSize / camera.focalDistance();
+    const glm::dmat4 m(toWorld);
+    const double stretch = std::max({glm::length(DVec3(m[0])), glm::length(DVec3(m[1])),
+                                     glm::length(DVec3(m[2]))});
+    const DVec3 eye(camera.frame().e);
+    // Never below a millionth of the surface (a point at the eye itself).
+    const double floor = 1e-6 * extent;
+    return [=](const DVec3& p) {
+        const double footprint = perspective
+                                     ? perUnitDistance * glm::length(DVec3(m * glm::dvec4(p, 1.0)) - eye)
+                                     : pixelSize;
+        return std::max(pixels * footprint / stretch, floor);
+    };
+}
+
+// The triangles of a tessellated parametric shape, in object space, and the
+// map from its hits back to the surface.
+struct TessellatedShape {
+    LoadedMesh mesh;
+    std::shared_ptr<const TessellatedSurface> surface;
+};
+
+TessellatedShape tessellateShape(const SceneDesc& desc, const ShapeDesc& shape) {
+    const ParametricDesc& p = shape.parametric;
+    try {
+        const double extent = parametricExtent(*p.surface);
+        ParametricGridOptions grid;
+        const bool bounded = p.maxError > 0.0 || p.maxEdgePixels > 0.0;
+        grid.maxChordError = p.maxError;
+        if (p.maxEdgePixels > 0.0)
+            grid.maxEdgeLength = edgeLengthFromCamera(desc, shape.transform, p.maxEdgePixels, extent);
+        if (p.segmentsU > 0) {
+            grid.initialSegmentsU = p.segmentsU;
+            grid.initialSegmentsV = p.segmentsV;
+        } else if (!bounded) {
+            grid.maxChordError = kDefaultRelativeError * extent;
+        }
+        Tessellation t = tessellateParametric(*p.surface, buildParametricGrid(*p.surface, grid), p.normals);
+        TessellatedShape out;
+        out.mesh.mesh = std::move(t.mesh);
+        out.surface = std::make_shared<TessellatedSurface>(p.surface, std::move(t), shape.transform, p.normals);
+        return out;
+    } catch (const Error& e) {
+        fail(shapeSource(desc, shape), ": ", e.what());
+    }
+}
+
+std::shared_ptr<const UserShape> makeDirectShape(const SceneDesc& desc, const ShapeDesc& shape) {
+    try {
+        return std::make_shared<ParametricShape>(shape.parametric.surface, shape.transform,
+                                                 shape.parametric.direct);
     } catch (const Error& e) {
         fail(shapeSource(desc, shape), ": ", e.what());
     }
@@ -120,6 +187,7 @@ World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTiming
     // the message does not depend on thread timing.
     std::vector<LoadedMesh> loaded(jobs.size());
     std::vector<std::shared_ptr<const UserShape>> userShapes(jobs.size());
+    std::vector<std::shared_ptr<const TessellatedSurface>> tessellated(jobs.size());
     std::vector<std::exception_ptr> errors(jobs.size());
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
     arena.execute([&] {
@@ -130,7 +198,20 @@ World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTiming
                     userShapes[i] = makeImplicitShape(desc, shape);
                     return;
                 }
-                LoadedMesh mesh = loadShape(shape);
+                const bool direct = shape.kind == ShapeKind::Parametric &&
+                                    shape.parametric.mode == ParametricMode::Direct;
+                if (direct) {
+                    userShapes[i] = makeDirectShape(desc, shape);
+                    return;
+                }
+                LoadedMesh mesh;
+                if (shape.kind == ShapeKind::Parametric) {
+                    TessellatedShape t = tessellateShape(desc, shape);
+                    mesh = std::move(t.mesh);
+                    tessellated[i] = std::move(t.surface);
+                } else {
+                    mesh = loadShape(shape);
+                }
                 mesh.mesh.transform(shape.transform);
                 mesh.mesh.validate(shapeSource(desc, shape));
                 if (mesh.mesh.triangleCount() == 0)
@@ -149,6 +230,7 @@ World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTiming
         SceneShape geometry;
         geometry.name = shape.name;
         geometry.user = std::move(userShapes[i]);
+        geometry.tessellated = std::move(tessellated[i]);
         geometry.mesh = std::move(loaded[i].mesh);
         geometry.mesh.reservePadding();
         if (!shape.material.empty()) {

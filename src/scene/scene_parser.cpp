@@ -17,6 +17,7 @@
 #include <string_view>
 
 #include "implicit_parser.h"
+#include "parametric_parser.h"
 #include "json_reader.h"
 #include "transform_parser.h"
 #include "strahl/core/error.h"
@@ -31,6 +32,7 @@ namespace fs = std::filesystem;
 using scene_detail::JsonValue;
 using scene_detail::joinList;
 using scene_detail::parseTransform;
+using scene_detail::resolvePath;
 
 constexpr int64_t kMaxSpp = 65536;
 // Below this sine of the angle between up and the viewing axis, the camera frame
@@ -44,14 +46,6 @@ bool hasExtension(const fs::path& path, std::span<const std::string_view> extens
         if (ext == allowed) return true;
     }
     return false;
-}
-
-// Relative paths are relative to the scene file's folder; absolute ones are kept.
-fs::path resolvePath(const fs::path& folder, const JsonValue& value) {
-    const std::string text = value.string();
-    if (text.empty()) value.fail("expected a path, got an empty string");
-    const fs::path path(text);
-    return (path.is_absolute() ? path : folder / path).lexically_normal();
 }
 
 // --- camera --------------------------------------------------------------------
@@ -254,7 +248,7 @@ ShapeDesc parseShape(const JsonValue& v, const ShapeContext& context) {
     ShapeDesc s;
     s.where = v.pointer();
     if (!v.raw().is_object()) v.fail("expected an object, got ", v.describe());
-    const std::string type = v.get("type").oneOf({"mesh", "implicit", "instance"});
+    const std::string type = v.get("type").oneOf({"mesh", "implicit", "parametric", "instance"});
     if (type == "instance") {
         v.requireKeys({"type", "name", "group", "transform"});
         s.kind = ShapeKind::Instance;
@@ -279,6 +273,12 @@ ShapeDesc parseShape(const JsonValue& v, const ShapeContext& context) {
                        "tolerance"});
         s.kind = ShapeKind::Implicit;
         scene_detail::parseImplicitShape(v, s.implicitSurface, s.implicitOptions);
+        s.name = s.where;
+    } else if (type == "parametric") {
+        v.requireKeys({"type", "name", "material", "transform", "surface", "mode", "tessellation",
+                       "direct"});
+        s.kind = ShapeKind::Parametric;
+        s.parametric = scene_detail::parseParametricShape(v, folder);
         s.name = s.where;
     } else {
         v.requireKeys({"type", "name", "file", "positions", "indices", "normals", "uvs",

@@ -1,6 +1,7 @@
 // The Embree user-geometry callback contract (src/accel/embree_accel.cpp),
 // exercised with implicit shapes — a torus cut into many cells (generic root
-// finder) and a sphere (closed form, one cell) — next to a triangle mesh:
+// finder) and a sphere (closed form, one cell) — and a directly intersected
+// parametric cone (Newton's method on sub-patches), next to a triangle mesh:
 //  - intersect8/16 with random valid masks agree exactly with single rays
 //    (t, geomID, primID, Ng) on the implicit shapes;
 //  - lanes with valid = 0 are not touched at all (every field keeps its
@@ -22,6 +23,8 @@
 #include "strahl/core/rng.h"
 #include "strahl/geometry/implicit_builtins.h"
 #include "strahl/geometry/implicit_shape.h"
+#include "strahl/geometry/parametric_builtins.h"
+#include "strahl/geometry/parametric_shape.h"
 
 #include "test_scene_pieces.h"
 
@@ -36,11 +39,13 @@ Mat4 torusToWorld() {
            glm::rotate(Mat4(1.0f), 1.1f, Vec3(1.0f, 0.3f, 0.0f));
 }
 
-// geomID 0: torus (R 1, r 0.3), 1: triangle mesh (a tilted quad behind), 2: sphere.
+// geomID 0: torus (R 1, r 0.3), 1: triangle mesh (a tilted quad behind), 2: sphere,
+// 3: parametric cone.
 struct Scene {
     ImplicitShape torus;
     TriangleMesh quad;
     ImplicitShape sphere;
+    ParametricShape cone;
     std::vector<ShapeRef> refs;
 
     Scene()
@@ -50,9 +55,13 @@ struct Scene {
                     o.cellsPerAxis = 12;
                     return o;
                 }()),
-          sphere(makeImplicitSphere(0.7), glm::translate(Mat4(1.0f), Vec3(1.2f, -0.3f, 0.5f)), {}) {
+          sphere(makeImplicitSphere(0.7), glm::translate(Mat4(1.0f), Vec3(1.2f, -0.3f, 0.5f)), {}),
+          cone(makeParametricCone(0.45, 0.8),
+               glm::rotate(glm::translate(Mat4(1.0f), Vec3(0.4f, 0.7f, 0.4f)), 0.8f, Vec3(1, 0, 0)),
+               {}) {
         quad = test::warpedBackdrop();
-        refs = {ShapeRef{nullptr, &torus}, ShapeRef{&quad, nullptr}, ShapeRef{nullptr, &sphere}};
+        refs = {ShapeRef{nullptr, &torus}, ShapeRef{&quad, nullptr}, ShapeRef{nullptr, &sphere},
+                ShapeRef{nullptr, &cone}};
     }
 };
 
@@ -106,7 +115,7 @@ void expectPacketsMatchSingleRays(uint64_t seed) {
     const std::vector<Ray> rays = randomRays(N * 150, seed);
     Pcg32 maskRng(seed, 3);
     int implicitHits = 0, meshHits = 0, misses = 0, inactive = 0;
-    int hitsPerGeom[3] = {0, 0, 0};
+    int hitsPerGeom[4] = {0, 0, 0, 0};
     for (size_t base = 0; base + N <= rays.size(); base += N) {
         RayHitPacket<N> packet;
         alignas(64) int valid[N];
@@ -150,7 +159,7 @@ void expectPacketsMatchSingleRays(uint64_t seed) {
             EXPECT_GT(fromPacket.t, ray.tnear);
             EXPECT_LT(fromPacket.t, ray.tfar);
             if (scene.refs[single.geomID].user) {
-                // Same ImplicitShape::intersect, same answer, bit for bit.
+                // Same UserShape::intersect, same answer, bit for bit.
                 ++implicitHits;
                 EXPECT_EQ(single.t, fromPacket.t);
                 EXPECT_EQ(single.primID, fromPacket.primID);
@@ -171,6 +180,7 @@ void expectPacketsMatchSingleRays(uint64_t seed) {
     EXPECT_GT(hitsPerGeom[0], 100);  // torus
     EXPECT_GT(hitsPerGeom[1], 50);   // quad
     EXPECT_GT(hitsPerGeom[2], 50);   // sphere
+    EXPECT_GT(hitsPerGeom[3], 30);   // cone
     EXPECT_GT(misses, 5);
     EXPECT_GT(inactive, 100);
     EXPECT_GT(implicitHits, meshHits / 4);

@@ -44,7 +44,7 @@ struct ParametricShapeOptions {
     // Sub-patches: a grid refined until each is nearly flat (chordal error
     // below this fraction of the surface's extent), which keeps the planar
     // seeds close to the root and a ray from crossing one sub-patch twice
-    // except at grazing angles.
+    // except at grazing angles. 0: a uniform grid of initialSegments.
     double flatness = 2e-3;
     int initialSegments = 4;  // per patch and direction
     int maxSegments = 256;    // per patch and direction

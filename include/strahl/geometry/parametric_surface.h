@@ -106,6 +106,10 @@ private:
 
 using ParametricSurfacePtr = std::shared_ptr<const ParametricSurface>;
 
+// The diagonal of the box around a 5 x 5 grid of points of every patch: the
+// length that relative tolerances and error bounds are fractions of.
+double parametricExtent(const ParametricSurface& surface);
+
 // Throws strahl::Error naming the surface if its domain is empty, inverted or
 // not finite, or if f or its partials are not finite at a grid of sample points
 // (a formula that divides by zero inside its domain).

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "strahl/accel/accel.h"
+#include "strahl/geometry/parametric_tessellation.h"
 #include "strahl/geometry/triangle_mesh.h"
 #include "strahl/geometry/user_shape.h"
 #include "strahl/integrator/light.h"
@@ -21,6 +22,9 @@ struct SceneShape {
     std::string name;
     TriangleMesh mesh;                      // empty for user shapes
     std::shared_ptr<const UserShape> user;  // null for meshes
+    // A mesh that tessellates a parametric surface: maps its hits back to the
+    // surface for exact normals and (u, v). Null for other shapes.
+    std::shared_ptr<const TessellatedSurface> tessellated;
     // materialOfSlot[interaction.materialSlot] indexes World::materials; shapes
     // without face materials use materialOfSlot[0].
     std::vector<uint32_t> materialOfSlot;

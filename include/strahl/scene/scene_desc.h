@@ -14,6 +14,8 @@
 #include "strahl/core/math.h"
 #include "strahl/film/film.h"
 #include "strahl/geometry/implicit_shape.h"
+#include "strahl/geometry/parametric_shape.h"
+#include "strahl/geometry/parametric_tessellation.h"
 #include "strahl/geometry/triangle_mesh.h"
 
 namespace strahl {
@@ -56,7 +58,29 @@ struct MaterialDesc {
     std::string where;
 };
 
-enum class ShapeKind { Mesh, Implicit, Instance };
+enum class ShapeKind { Mesh, Implicit, Parametric, Instance };
+
+enum class ParametricMode { Tessellated, Direct };
+
+// A parametric shape: its surface (built at parse time, so a bad formula or
+// patch file is reported with its place) and how it is rendered.
+struct ParametricDesc {
+    ParametricSurfacePtr surface;
+    ParametricMode mode = ParametricMode::Tessellated;
+    // Tessellated: uniform segments per patch and direction (the start of the
+    // refinement when a bound is also given), and the adaptive bounds: chordal
+    // error in object-space units, edge length in pixels from the camera.
+    // Neither bound nor segments: maxError = kDefaultRelativeError × extent.
+    int segmentsU = 0, segmentsV = 0;
+    double maxError = 0.0;
+    double maxEdgePixels = 0.0;
+    ParametricNormals normals = ParametricNormals::Exact;
+    // Direct: the sub-patch and Newton settings.
+    ParametricShapeOptions direct;
+};
+// 5e-4 of the surface's extent is below half a pixel for a surface that fills
+// a 1000-pixel-wide image.
+inline constexpr double kDefaultRelativeError = 5e-4;
 
 struct ShapeDesc {
     ShapeKind kind = ShapeKind::Mesh;
@@ -66,6 +90,7 @@ struct ShapeDesc {
     TriangleMesh inlineMesh;         // used when file is empty
     ImplicitSurfacePtr implicitSurface;    // kind == Implicit: f, compiled at parse time
     ImplicitShapeOptions implicitOptions;  // its box, cells and tolerance
+    ParametricDesc parametric;             // kind == Parametric
     Mat4 transform{1.0f};            // object to world (in a group: to the group's space)
     std::string material;            // empty: the file's own materials, else "default"
     std::string where;               // JSON pointer, e.g. "/shapes/0"

@@ -1,0 +1,223 @@
+#include "parametric_parser.h"
+
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "height_image.h"
+#include "strahl/geometry/bezier_patches.h"
+#include "strahl/geometry/formula.h"
+#include "strahl/geometry/height_field.h"
+#include "strahl/geometry/parametric_builtins.h"
+#include "strahl/geometry/parametric_formula.h"
+#include "strahl/geometry/revolution_surface.h"
+#include "strahl/meshio/bezier_file.h"
+
+namespace strahl::scene_detail {
+
+namespace {
+
+// Per patch and direction. 4096² triangles is already 33 million.
+constexpr int64_t kMaxSegments = 4096;
+constexpr int64_t kMaxSubPatches = 256;
+
+// A number read in double precision (scene numbers are otherwise floats), or
+// a constant formula such as "2*pi" — so a periodic domain can end exactly at
+// 2π, which no decimal literal read as float does.
+double exactNumber(const JsonValue& v, const std::map<std::string, double>& parameters) {
+    double x = 0.0;
+    if (v.raw().is_string()) {
+        try {
+            x = Formula::compile(v.string(), {}, parameters).evaluate<double>(nullptr);
+        } catch (const Error& e) {
+            v.fail(e.what());
+        }
+    } else if (v.raw().is_number()) {
+        x = v.raw().get<double>();
+    } else {
+        v.fail("expected a number or a constant formula such as \"2*pi\", got ", v.describe());
+    }
+    if (!std::isfinite(x)) v.fail("must be finite, got ", x);
+    return x;
+}
+
+double number(const JsonValue& v, std::string_view key, double fallback) {
+    const auto found = v.find(key);
+    return found ? exactNumber(*found, {}) : fallback;
+}
+
+std::map<std::string, double> parseParameters(const JsonValue& v) {
+    std::map<std::string, double> parameters;
+    if (auto p = v.find("parameters")) {
+        if (!p->raw().is_object()) p->fail("expected an object of name: number, got ", p->describe());
+        for (const auto& item : p->raw().items())
+            parameters[item.key()] = exactNumber(p->get(item.key()), {});
+    }
+    return parameters;
+}
+
+// Runs a geometry constructor; its strahl::Error (which names the parameter
+// but not the place) is re-thrown with the JSON pointer of `v`.
+template <class Make>
+ParametricSurfacePtr build(const JsonValue& v, Make&& make) {
+    try {
+        return make();
+    } catch (const Error& e) {
+        v.fail(e.what());
+    }
+}
+
+void parseRange(const JsonValue& v, const std::map<std::string, double>& parameters, double& lo,
+                double& hi) {
+    if (v.size() != 2) v.fail("expected [min, max]");
+    lo = exactNumber(v.at(0), parameters);
+    hi = exactNumber(v.at(1), parameters);
+    if (!(lo < hi)) v.fail("the domain is empty or inverted: [", lo, ", ", hi, "]");
+}
+
+ParametricSurfacePtr parseFormula(const JsonValue& v) {
+    v.requireKeys({"type", "x", "y", "z", "u", "v", "periodic_u", "periodic_v", "twisted_u",
+                   "parameters"});
+    const std::map<std::string, double> parameters = parseParameters(v);
+    ParamDomain domain;
+    parseRange(v.get("u"), parameters, domain.u0, domain.u1);
+    parseRange(v.get("v"), parameters, domain.v0, domain.v1);
+    if (auto p = v.find("periodic_u")) domain.periodicU = p->boolean();
+    if (auto p = v.find("periodic_v")) domain.periodicV = p->boolean();
+    if (auto p = v.find("twisted_u")) {
+        domain.twistedU = p->boolean();
+        if (domain.twistedU && !domain.periodicU) p->fail("a twisted seam needs \"periodic_u\": true");
+    }
+    const ParametricFormulaText text{v.get("x").string(), v.get("y").string(), v.get("z").string()};
+    return build(v, [&] { return makeParametricFormula(text, domain, parameters); });
+}
+
+ParametricSurfacePtr parseSurface(const JsonValue& v, const std::filesystem::path& folder) {
+    if (!v.raw().is_object()) v.fail("expected a surface object, got ", v.describe());
+    const std::string type = v.get("type").oneOf({"sphere", "torus", "cylinder", "cone", "mobius",
+                                                  "revolution", "bezier", "heightfield", "formula"});
+    if (type == "sphere") {
+        v.requireKeys({"type", "radius"});
+        const double r = number(v, "radius", 1.0);
+        return build(v, [&] { return makeParametricSphere(r); });
+    }
+    if (type == "torus") {
+        v.requireKeys({"type", "major_radius", "minor_radius"});
+        const double R = number(v, "major_radius", 1.0), r = number(v, "minor_radius", 0.25);
+        return build(v, [&] { return makeParametricTorus(R, r); });
+    }
+    if (type == "cylinder") {
+        v.requireKeys({"type", "radius", "z_min", "z_max"});
+        const double r = number(v, "radius", 1.0), z0 = number(v, "z_min", -1.0),
+                     z1 = number(v, "z_max", 1.0);
+        return build(v, [&] { return makeParametricCylinder(r, z0, z1); });
+    }
+    if (type == "cone") {
+        v.requireKeys({"type", "radius", "height"});
+        const double r = number(v, "radius", 1.0), h = number(v, "height", 1.0);
+        return build(v, [&] { return makeParametricCone(r, h); });
+    }
+    if (type == "mobius") {
+        v.requireKeys({"type", "radius", "half_width"});
+        const double R = number(v, "radius", 1.0), w = number(v, "half_width", 0.3);
+        return build(v, [&] { return makeMobiusStrip(R, w); });
+    }
+    if (type == "revolution") {
+        v.requireKeys({"type", "profile"});
+        const JsonValue list = v.get("profile");
+        std::vector<glm::dvec2> profile;
+        for (size_t i = 0; i < list.size(); ++i) profile.push_back(glm::dvec2(list.at(i).vec2()));
+        return build(v, [&] { return makeSurfaceOfRevolution(std::move(profile)); });
+    }
+    if (type == "bezier") {
+        v.requireKeys({"type", "file", "reverse"});
+        const JsonValue file = v.get("file");
+        const std::filesystem::path path = resolvePath(folder, file);
+        const auto reverse = v.find("reverse");
+        const bool swap = reverse && reverse->boolean();
+        return build(file, [&] {
+            std::vector<BezierPatch> patches = loadBezierFile(path);
+            // Swapping u and v in every patch turns ∂u f × ∂v f around (the
+            // classic teapot data's normals point into the pot).
+            if (swap)
+                for (BezierPatch& patch : patches)
+                    for (int i = 0; i < 4; ++i)
+                        for (int j = i + 1; j < 4; ++j)
+                            std::swap(patch.points[size_t(4 * i + j)], patch.points[size_t(4 * j + i)]);
+            return makeBezierPatchSet(std::move(patches), path.filename().string());
+        });
+    }
+    if (type == "heightfield") {
+        v.requireKeys({"type", "image", "size", "height"});
+        const JsonValue image = v.get("image");
+        const std::filesystem::path path = resolvePath(folder, image);
+        Vec2 size(1.0f);
+        if (auto s = v.find("size")) size = s->vec2();
+        const double height = number(v, "height", 1.0);
+        return build(image, [&] {
+            HeightImage h = loadHeightImage(path);
+            return makeHeightField(std::move(h.heights), h.columns, h.rows, size.x, size.y, height);
+        });
+    }
+    return parseFormula(v);
+}
+
+// "segments": n, or [nu, nv].
+void parseSegments(const JsonValue& v, int& u, int& w) {
+    if (v.raw().is_array()) {
+        if (v.size() != 2) v.fail("expected a count or [count along u, count along v]");
+        u = static_cast<int>(v.at(0).integer(1, kMaxSegments));
+        w = static_cast<int>(v.at(1).integer(1, kMaxSegments));
+    } else {
+        u = w = static_cast<int>(v.integer(1, kMaxSegments));
+    }
+}
+
+double positive(const JsonValue& v) {
+    const double x = exactNumber(v, {});
+    if (!(x > 0.0)) v.fail("must be a positive number, got ", x);
+    return x;
+}
+
+}  // namespace
+
+ParametricDesc parseParametricShape(const JsonValue& shape, const std::filesystem::path& folder) {
+    ParametricDesc p;
+    p.surface = parseSurface(shape.get("surface"), folder);
+    if (auto mode = shape.find("mode"))
+        p.mode = mode->oneOf({"tessellated", "direct"}) == "direct" ? ParametricMode::Direct
+                                                                     : ParametricMode::Tessellated;
+    const auto tessellation = shape.find("tessellation");
+    const auto direct = shape.find("direct");
+    if (p.mode == ParametricMode::Direct && tessellation)
+        tessellation->fail("only for \"mode\": \"tessellated\"");
+    if (p.mode == ParametricMode::Tessellated && direct) direct->fail("only for \"mode\": \"direct\"");
+    if (tessellation) {
+        const JsonValue& t = *tessellation;
+        t.requireKeys({"segments", "max_error", "max_edge_pixels", "normals"});
+        if (auto s = t.find("segments")) parseSegments(*s, p.segmentsU, p.segmentsV);
+        if (auto e = t.find("max_error")) p.maxError = positive(*e);
+        if (auto e = t.find("max_edge_pixels")) p.maxEdgePixels = positive(*e);
+        if (auto n = t.find("normals"))
+            p.normals = n->oneOf({"exact", "interpolated"}) == "exact" ? ParametricNormals::Exact
+                                                                       : ParametricNormals::Interpolated;
+    }
+    if (direct) {
+        const JsonValue& d = *direct;
+        d.requireKeys({"sub_patches", "tolerance"});
+        if (auto s = d.find("sub_patches")) {
+            // A fixed grid of sub-patches instead of the automatic flatness bound.
+            p.direct.initialSegments = static_cast<int>(s->integer(1, kMaxSubPatches));
+            p.direct.flatness = 0.0;
+        }
+        if (auto tol = d.find("tolerance")) {
+            p.direct.relativeTolerance = exactNumber(*tol, {});
+            if (!(p.direct.relativeTolerance >= 1e-14 && p.direct.relativeTolerance <= 1e-3))
+                tol->fail("must lie in [1e-14, 1e-3], got ", p.direct.relativeTolerance);
+        }
+    }
+    return p;
+}
+
+}  // namespace strahl::scene_detail
