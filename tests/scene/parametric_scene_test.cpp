@@ -1,0 +1,160 @@
+// Parametric shapes in scene files (docs/scene-format.md, "Parametric
+// shapes"): every surface type parses and builds in both modes, the mode's
+// settings reach the shape, and every class of bad input gets one message
+// naming the JSON pointer (or the file and line of a patch file).
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "strahl/geometry/parametric_shape.h"
+#include "strahl/scene/scene_builder.h"
+#include "strahl/scene/scene_desc.h"
+#include "test_support.h"
+
+namespace strahl {
+namespace {
+
+using test::contains;
+
+std::string sceneWith(const std::string& shape) { return R"({"shapes": [)" + shape + "]}"; }
+
+std::string parametric(const std::string& surface, const std::string& extra = "") {
+    return R"({"type": "parametric", "surface": )" + surface + (extra.empty() ? "" : ", " + extra) + "}";
+}
+
+SceneDesc parseIn(const std::filesystem::path& file, const std::string& text) {
+    return parseSceneText(text, file);
+}
+
+SceneDesc parse(const std::string& text) { return parseIn(test::sourceDir() / "scenes" / "scene.json", text); }
+
+std::string errorOf(const std::string& surface, const std::string& extra = "") {
+    return test::errorMessage([&] { parse(sceneWith(parametric(surface, extra))); });
+}
+
+const char* kSurfaces[] = {
+    R"({"type": "sphere", "radius": 0.5})",
+    R"({"type": "torus", "major_radius": 1, "minor_radius": 0.2})",
+    R"({"type": "cylinder", "radius": 0.5, "z_min": 0, "z_max": 2})",
+    R"({"type": "cone", "radius": 0.5, "height": 1})",
+    R"({"type": "mobius", "radius": 1, "half_width": 0.3})",
+    R"({"type": "revolution", "profile": [[0, 0], [0.5, 0.2], [0.6, 0.8], [0, 1]]})",
+    R"({"type": "bezier", "file": "data/teapot.bpt", "reverse": true})",
+    R"J({"type": "formula", "x": "(R + r*cos(v))*cos(u)", "y": "(R + r*cos(v))*sin(u)",
+        "z": "r*sin(v)", "u": [0, "2*pi"], "v": [0, "2*pi"], "periodic_u": true,
+        "periodic_v": true, "parameters": {"R": 1, "r": 0.3}})J",
+};
+
+TEST(ParametricScene, EverySurfaceBuildsInBothModes) {
+    for (const char* surface : kSurfaces) {
+        for (const std::string mode : {"tessellated", "direct"}) {
+            const SceneDesc desc = parse(sceneWith(parametric(surface, R"("mode": ")" + mode + "\"")));
+            ASSERT_EQ(desc.shapes.size(), 1u);
+            EXPECT_EQ(desc.shapes[0].kind, ShapeKind::Parametric);
+            const World world = buildWorld(desc, BuildOptions{});
+            ASSERT_EQ(world.shapes.size(), 1u);
+            const SceneShape& shape = world.shapes[0];
+            if (mode == "direct") {
+                ASSERT_NE(shape.user, nullptr) << surface;
+                EXPECT_GT(shape.user->primitiveCount(), 0u);
+                EXPECT_TRUE(contains(shape.user->describe(), "(direct)"));
+            } else {
+                ASSERT_NE(shape.tessellated, nullptr) << surface;
+                EXPECT_GT(shape.mesh.triangleCount(), 0u);
+            }
+        }
+    }
+}
+
+TEST(ParametricScene, TessellationSettingsReachTheMesh) {
+    const char* sphere = R"({"type": "sphere", "radius": 1})";
+    auto triangles = [&](const std::string& tessellation) {
+        const SceneDesc desc = parse(sceneWith(parametric(sphere, R"("tessellation": )" + tessellation)));
+        return buildWorld(desc, BuildOptions{}).shapes[0].mesh.triangleCount();
+    };
+    // Uniform: 8 x 16 cells, two triangles each, minus one per pole cell.
+    EXPECT_EQ(triangles(R"({"segments": [8, 16]})"), 2u * 8u * 16u - 2u * 16u);
+    // A tighter chordal bound, more triangles.
+    EXPECT_GT(triangles(R"({"max_error": 0.0001})"), 4 * triangles(R"({"max_error": 0.01})"));
+    // Edge length on screen: one pixel gives more than eight.
+    EXPECT_GT(triangles(R"({"max_edge_pixels": 1})"), triangles(R"({"max_edge_pixels": 8})"));
+    const SceneDesc interpolated =
+        parse(sceneWith(parametric(sphere, R"("tessellation": {"segments": 8, "normals": "interpolated"})")));
+    const World world = buildWorld(interpolated, BuildOptions{});
+    EXPECT_EQ(world.shapes[0].tessellated->normals(), ParametricNormals::Interpolated);
+    EXPECT_FALSE(world.shapes[0].mesh.normals.empty());
+}
+
+TEST(ParametricScene, DomainsTakeExactConstantFormulas) {
+    const SceneDesc desc = parse(sceneWith(parametric(
+        R"J({"type": "formula", "x": "cos(u)", "y": "sin(u)", "z": "v", "u": [0, "2*pi"], "v": [-1, 1],
+            "periodic_u": true})J")));
+    const ParamDomain& d = desc.shapes[0].parametric.surface->domain();
+    EXPECT_EQ(d.u1, 2.0 * num::kPiD);
+    EXPECT_TRUE(d.periodicU);
+    EXPECT_FALSE(d.periodicV);
+}
+
+TEST(ParametricScene, BadSurfacesNameTheirPlace) {
+    EXPECT_TRUE(contains(errorOf(R"({"type": "sphere", "radius": -1})"),
+                         "scene.json: /shapes/0/surface: radius must be a positive finite number"));
+    EXPECT_TRUE(contains(errorOf(R"({"type": "klein"})"), "/shapes/0/surface/type: must be one of"));
+    EXPECT_TRUE(contains(errorOf(R"({"type": "torus", "major_radius": 1, "minor_radius": 2})"),
+                         "/shapes/0/surface: minor_radius"));
+    EXPECT_TRUE(contains(
+        errorOf(R"({"type": "formula", "x": "u +", "y": "v", "z": "0", "u": [0, 1], "v": [0, 1]})"),
+        "/shapes/0/surface: x: column"));
+    EXPECT_TRUE(contains(
+        errorOf(R"({"type": "formula", "x": "1/u", "y": "v", "z": "0", "u": [0, 1], "v": [0, 1]})"),
+        "/shapes/0/surface: formula"));
+    EXPECT_TRUE(contains(
+        errorOf(R"({"type": "formula", "x": "u", "y": "v", "z": "0", "u": [1, 0], "v": [0, 1]})"),
+        "/shapes/0/surface/u: the domain is empty or inverted"));
+    EXPECT_TRUE(contains(
+        errorOf(R"({"type": "formula", "x": "u", "y": "v", "z": "0", "u": [0, "2*pie"], "v": [0, 1]})"),
+        "/shapes/0/surface/u/1"));
+    EXPECT_TRUE(contains(errorOf(R"({"type": "revolution", "profile": [[-1, 0], [1, 1]]})"),
+                         "/shapes/0/surface"));
+    EXPECT_TRUE(contains(errorOf(R"({"type": "bezier", "file": "data/missing.bpt"})"),
+                         "/shapes/0/surface/file"));
+    EXPECT_TRUE(contains(errorOf(R"({"type": "heightfield", "image": "data/teapot.bpt"})"),
+                         "/shapes/0/surface/image"));
+}
+
+TEST(ParametricScene, MalformedPatchFilesNameFileAndLine) {
+    const auto dir = test::scratchDir("bad-patches");
+    test::writeFile(dir / "bad.bpt", "1\n3 3\n0 0 0\n1 0 0\n");  // truncated after 2 of 16 points
+    const std::string message = test::errorMessage([&] {
+        parseIn(dir / "scene.json", sceneWith(parametric(R"({"type": "bezier", "file": "bad.bpt"})")));
+    });
+    EXPECT_TRUE(contains(message, "/shapes/0/surface/file")) << message;
+    EXPECT_TRUE(contains(message, "bad.bpt:")) << message;
+}
+
+TEST(ParametricScene, BadModeSettingsAreNamed) {
+    const char* sphere = R"({"type": "sphere"})";
+    EXPECT_TRUE(contains(errorOf(sphere, R"("mode": "exact")"), "/shapes/0/mode: must be one of tessellated, direct"));
+    EXPECT_TRUE(contains(errorOf(sphere, R"("mode": "direct", "tessellation": {"segments": 4})"),
+                         "/shapes/0/tessellation: only for \"mode\": \"tessellated\""));
+    EXPECT_TRUE(contains(errorOf(sphere, R"("direct": {"tolerance": 1e-6})"),
+                         "/shapes/0/direct: only for \"mode\": \"direct\""));
+    EXPECT_TRUE(contains(errorOf(sphere, R"("tessellation": {"segments": 0})"), "/shapes/0/tessellation/segments"));
+    EXPECT_TRUE(contains(errorOf(sphere, R"("tessellation": {"segments": 100000})"),
+                         "/shapes/0/tessellation/segments"));
+    EXPECT_TRUE(contains(errorOf(sphere, R"("tessellation": {"max_error": -1})"),
+                         "/shapes/0/tessellation/max_error: must be a positive number"));
+    EXPECT_TRUE(contains(errorOf(sphere, R"("tessellation": {"normals": "smooth"})"),
+                         "/shapes/0/tessellation/normals"));
+    EXPECT_TRUE(contains(errorOf(sphere, R"("mode": "direct", "direct": {"tolerance": 0.5})"),
+                         "/shapes/0/direct/tolerance: must lie in"));
+    EXPECT_TRUE(contains(errorOf(sphere, R"("box": [[0,0,0],[1,1,1]])"), "unknown key 'box'"));
+}
+
+TEST(ParametricScene, SingularTransformIsRejected) {
+    EXPECT_TRUE(contains(errorOf(R"({"type": "sphere"})", R"("mode": "direct", "transform": [{"scale": [1, 0, 1]}])"),
+                         "/shapes/0/transform/0/scale: must be non-zero"));
+}
+
+}  // namespace
+}  // namespace strahl
