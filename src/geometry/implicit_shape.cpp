@@ -5,6 +5,7 @@
 
 #include <glm/matrix.hpp>
 
+#include "double_box.h"
 #include "strahl/core/error.h"
 #include "strahl/geometry/implicit_root_finder.h"
 
@@ -12,49 +13,19 @@ namespace strahl {
 
 namespace {
 
+using geometry_detail::clipToBox;
+using geometry_detail::isFiniteD;
+using geometry_detail::roundDown;
+using geometry_detail::roundUp;
+
 // Finer grids cull more empty space but cost Embree primitives and build time;
 // 32³ = 32768 candidate cells keeps the build in milliseconds while a typical
 // surface keeps only a few thousand of them.
 constexpr int kDefaultCells = 32;
 constexpr int kMaxCells = 256;
 
-Vec3 toFloatDown(const DVec3& v) {
-    auto down = [](double x) {
-        const float f = static_cast<float>(x);
-        return static_cast<double>(f) > x ? std::nextafter(f, -kInfinity) : f;
-    };
-    return Vec3(down(v.x), down(v.y), down(v.z));
-}
-Vec3 toFloatUp(const DVec3& v) {
-    auto up = [](double x) {
-        const float f = static_cast<float>(x);
-        return static_cast<double>(f) < x ? std::nextafter(f, kInfinity) : f;
-    };
-    return Vec3(up(v.x), up(v.y), up(v.z));
-}
 
-bool isFiniteD(const DVec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
 
-// Parameter range [t0, t1] of the ray o + t·d inside the box (slab method).
-// An axis the ray runs parallel to constrains nothing if o lies in its slab,
-// and rejects the ray otherwise (this avoids 0·inf = NaN).
-bool clipToBox(const DVec3& o, const DVec3& d, const DVec3& lo, const DVec3& hi, double& t0,
-               double& t1) {
-    for (int axis = 0; axis < 3; ++axis) {
-        if (d[axis] == 0.0) {
-            if (o[axis] < lo[axis] || o[axis] > hi[axis]) return false;
-            continue;
-        }
-        const double inv = 1.0 / d[axis];
-        double a = (lo[axis] - o[axis]) * inv, b = (hi[axis] - o[axis]) * inv;
-        if (a > b) std::swap(a, b);
-        t0 = std::max(t0, a);
-        t1 = std::min(t1, b);
-    }
-    return t0 <= t1;
-}
 
 }  // namespace
 
@@ -128,7 +99,7 @@ ImplicitShape::ImplicitShape(ImplicitSurfacePtr surface, const Mat4& objectToWor
             hi = glm::max(hi, w);
         }
         if (!isFiniteD(lo) || !isFiniteD(hi)) fail("the transformed surface is not finite");
-        worldBounds_.push_back(Bounds3{toFloatDown(lo), toFloatUp(hi)});
+        worldBounds_.push_back(Bounds3{roundDown(lo), roundUp(hi)});
         bounds_.expand(worldBounds_.back());
     }
 }

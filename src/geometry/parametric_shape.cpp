@@ -7,12 +7,18 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
+#include "double_box.h"
 #include "strahl/core/error.h"
 #include "strahl/core/transform.h"
 
 namespace strahl {
 
 namespace {
+
+using geometry_detail::clipToBox;
+using geometry_detail::isFiniteD;
+using geometry_detail::roundDown;
+using geometry_detail::roundUp;
 
 // Newton converges quadratically from a planar seed on a nearly flat
 // sub-patch: 5-6 steps in practice. The cap only bounds the work on rays that
@@ -36,23 +42,6 @@ constexpr int kMaxSplitDepth = 8;
 // snapped onto it before ownership is decided.
 constexpr double kSnapFraction = 1e-9;
 
-bool finiteD(const DVec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
-Vec3 roundDown(const DVec3& v) {
-    auto down = [](double x) {
-        const float f = static_cast<float>(x);
-        return static_cast<double>(f) > x ? std::nextafter(f, -kInfinity) : f;
-    };
-    return Vec3(down(v.x), down(v.y), down(v.z));
-}
-Vec3 roundUp(const DVec3& v) {
-    auto up = [](double x) {
-        const float f = static_cast<float>(x);
-        return static_cast<double>(f) < x ? std::nextafter(f, kInfinity) : f;
-    };
-    return Vec3(up(v.x), up(v.y), up(v.z));
-}
-
 // Where o + t·d crosses the plane of triangle (a, b, c): t and the
 // barycentrics of b and c. False if the ray runs parallel to the plane.
 bool planeCrossing(const DVec3& o, const DVec3& d, const DVec3& a, const DVec3& b, const DVec3& c,
@@ -69,23 +58,6 @@ bool planeCrossing(const DVec3& o, const DVec3& d, const DVec3& a, const DVec3& 
     return std::isfinite(t) && std::isfinite(beta) && std::isfinite(gamma);
 }
 
-// Parameter range [t0, t1] of o + t·d inside the box (slab method); an axis
-// the ray runs parallel to rejects it unless o lies in that slab.
-bool clipToBox(const DVec3& o, const DVec3& d, const DVec3& lo, const DVec3& hi, double& t0,
-               double& t1) {
-    for (int axis = 0; axis < 3; ++axis) {
-        if (d[axis] == 0.0) {
-            if (o[axis] < lo[axis] || o[axis] > hi[axis]) return false;
-            continue;
-        }
-        const double inv = 1.0 / d[axis];
-        double a = (lo[axis] - o[axis]) * inv, b = (hi[axis] - o[axis]) * inv;
-        if (a > b) std::swap(a, b);
-        t0 = std::max(t0, a);
-        t1 = std::min(t1, b);
-    }
-    return t0 <= t1;
-}
 
 }  // namespace
 
@@ -148,7 +120,7 @@ ParametricShape::ParametricShape(ParametricSurfacePtr surface, const Mat4& objec
         bhi += tolerance_;
         c.boxMin = blo;
         c.boxMax = bhi;
-        if (!finiteD(blo) || !finiteD(bhi))
+        if (!isFiniteD(blo) || !isFiniteD(bhi))
             fail(surface_->describe(), ": not finite over (u, v) in [", c.u0, ", ", c.u1, "] x [",
                  c.v0, ", ", c.v1, "]");
         DVec3 wlo(num::kInf), whi(-num::kInf);
@@ -158,7 +130,7 @@ ParametricShape::ParametricShape(ParametricSurfacePtr surface, const Mat4& objec
             wlo = glm::min(wlo, w);
             whi = glm::max(whi, w);
         }
-        if (!finiteD(wlo) || !finiteD(whi)) fail("the transformed surface is not finite");
+        if (!isFiniteD(wlo) || !isFiniteD(whi)) fail("the transformed surface is not finite");
         worldBounds_.push_back(Bounds3{roundDown(wlo), roundUp(whi)});
         bounds_.expand(worldBounds_.back());
     }
@@ -229,7 +201,7 @@ bool ParametricShape::solve(const Cell& cell, const Rect& rect, const DVec3& o, 
             if (!(glm::determinant(A) != 0.0)) return false;
             step = glm::inverse(A) * (JT * -F);
         }
-        if (!finiteD(step)) return false;
+        if (!isFiniteD(step)) return false;
         t += step.x;
         u = std::clamp(u + step.y, uLo, uHi);
         v = std::clamp(v + step.z, vLo, vHi);

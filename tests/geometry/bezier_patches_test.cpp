@@ -16,8 +16,13 @@
 #include "strahl/core/error.h"
 #include "test_support.h"
 
+#include "surface_checks.h"
+
 namespace strahl {
 namespace {
+
+using test::axis;
+using test::expectNear;
 
 using test::contains;
 
@@ -35,16 +40,6 @@ BezierPatch planarPatch(const DVec3& origin, const DVec3& e1, const DVec3& e2) {
         for (int j = 0; j < 4; ++j)
             p.points[size_t(4 * i + j)] = origin + (i / 3.0) * e1 + (j / 3.0) * e2;
     return p;
-}
-
-void expectNear(const DVec3& a, const DVec3& b, double tolerance, const std::string& what) {
-    EXPECT_NEAR(a.x, b.x, tolerance) << what;
-    EXPECT_NEAR(a.y, b.y, tolerance) << what;
-    EXPECT_NEAR(a.z, b.z, tolerance) << what;
-}
-
-num::Interval axis(const Point3<num::Interval>& p, int a) {
-    return a == 0 ? p.x : (a == 1 ? p.y : p.z);
 }
 
 TEST(BezierPatches, PartialsMatchAutomaticDifferentiation) {

@@ -15,8 +15,13 @@
 #include "strahl/core/error.h"
 #include "test_support.h"
 
+#include "surface_checks.h"
+
 namespace strahl {
 namespace {
+
+using test::axis;
+using test::expectNear;
 
 using test::contains;
 
@@ -25,12 +30,6 @@ std::vector<float> randomHeights(std::mt19937& rng, int columns, int rows, float
     std::vector<float> heights(size_t(columns) * size_t(rows));
     for (float& x : heights) x = h(rng);
     return heights;
-}
-
-void expectNear(const DVec3& a, const DVec3& b, double tolerance, const std::string& what) {
-    EXPECT_NEAR(a.x, b.x, tolerance) << what;
-    EXPECT_NEAR(a.y, b.y, tolerance) << what;
-    EXPECT_NEAR(a.z, b.z, tolerance) << what;
 }
 
 TEST(HeightField, PartialsMatchAutomaticDifferentiation) {

@@ -14,8 +14,13 @@
 #include "strahl/core/error.h"
 #include "test_support.h"
 
+#include "surface_checks.h"
+
 namespace strahl {
 namespace {
+
+using test::axis;
+using test::expectNear;
 
 using test::contains;
 
@@ -24,16 +29,6 @@ constexpr double kTwoPi = 2.0 * num::kPiD;
 // A vase: a pole at the bottom, a belly, a neck and an open rim.
 std::vector<glm::dvec2> vase() {
     return {{0.0, 0.0}, {0.8, 0.1}, {1.2, 0.8}, {0.6, 1.6}, {0.5, 2.0}, {0.9, 2.4}};
-}
-
-void expectNear(const DVec3& a, const DVec3& b, double tolerance, const std::string& what) {
-    EXPECT_NEAR(a.x, b.x, tolerance) << what;
-    EXPECT_NEAR(a.y, b.y, tolerance) << what;
-    EXPECT_NEAR(a.z, b.z, tolerance) << what;
-}
-
-num::Interval axis(const Point3<num::Interval>& p, int a) {
-    return a == 0 ? p.x : (a == 1 ? p.y : p.z);
 }
 
 TEST(SurfaceOfRevolution, PartialsMatchAutomaticDifferentiation) {
