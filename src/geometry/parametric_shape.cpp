@@ -67,6 +67,7 @@ ParametricShape::ParametricShape(ParametricSurfacePtr surface, const Mat4& objec
     const glm::dmat4 toWorld(objectToWorld);
     const double det = glm::determinant(glm::dmat3(toWorld));
     if (!std::isfinite(det) || det == 0.0) fail("the transform is singular or not finite");
+    toWorld_ = toWorld;
     toObject_ = glm::inverse(toWorld);
     normalToWorld_ = glm::transpose(glm::dmat3(toObject_));
     if (!(options.relativeTolerance > 0.0 && options.relativeTolerance < 1e-2))
@@ -231,12 +232,16 @@ void ParametricShape::search(const Cell& cell, const Rect& rect, const DVec3 (&c
                               alpha * vs[tri[0]] + beta * vs[tri[1]] + gamma * vs[tri[2]]};
     }
     const double uc = 0.5 * (rect.u0 + rect.u1), vc = 0.5 * (rect.v0 + rect.v1);
-    const DVec3 centre = surface_->point(cell.patch, uc, vc);
-    seeds[seedCount++] = {glm::dot(centre - o, d) / glm::dot(d, d), uc, vc};
+    const int planarSeeds = seedCount;
+    ++seedCount;  // the centre, made only if it is needed
 
     bool found = false;
     for (int s = 0; s < seedCount; ++s) {
-        if (s == seedCount - 1 && found) break;  // the centre only as a fallback
+        if (s == planarSeeds) {
+            if (found) break;  // the centre only as a fallback
+            const DVec3 centre = surface_->point(cell.patch, uc, vc);
+            seeds[s] = {glm::dot(centre - o, d) / glm::dot(d, d), uc, vc};
+        }
         Root root;
         if (!solve(cell, rect, o, d, seeds[s].u, seeds[s].v, seeds[s].t, root)) continue;
         const float t = static_cast<float>(root.t);
@@ -321,8 +326,7 @@ SurfaceInteraction ParametricShape::interaction(const Ray& ray, const Hit& hit) 
     const DVec3 params = hitParameters(hit);
     const Cell& cell = cells_[hit.primID];
     const SurfacePoint s = surface_->partials(cell.patch, params.x, params.y);
-    const glm::dmat4 toWorld = glm::inverse(toObject_);
-    const DVec3 pWorld = DVec3(toWorld * glm::dvec4(s.p, 1.0));
+    const DVec3 pWorld = DVec3(toWorld_ * glm::dvec4(s.p, 1.0));
 
     SurfaceInteraction si;
     si.p = Vec3(pWorld);
@@ -332,14 +336,13 @@ SurfaceInteraction ParametricShape::interaction(const Ray& ray, const Hit& hit) 
     // float and of the transform (gamma(3) of its magnitude).
     const double paramError = 0x1p-24 * (glm::length(s.dpdu) * (cell.u1 - cell.u0) +
                                          glm::length(s.dpdv) * (cell.v1 - cell.v0));
-    const glm::dmat3 linear(toWorld);
+    const glm::dmat3 linear(toWorld_);
     const glm::dmat3 absLinear(glm::abs(linear[0]), glm::abs(linear[1]), glm::abs(linear[2]));
     const DVec3 objectError(tolerance_ + paramError);
     si.pError = Vec3(absLinear * objectError) + gammaBound(3) * glm::abs(si.p);
-    const DVec3 n = surface_->normal(cell.patch, params.x, params.y);
-    const Vec3 Ng = Vec3(normalToWorld_ * n);
-    const float len = glm::length(Ng);
-    si.Ng = len > 0.0f && std::isfinite(len) ? Ng / len : -glm::normalize(ray.dir);
+    // intersect() already mapped the exact normal at this root into hit.Ng.
+    const float len = glm::length(hit.Ng);
+    si.Ng = len > 0.0f && std::isfinite(len) ? hit.Ng / len : -glm::normalize(ray.dir);
     si.Ns = si.Ng;
     const ParamDomain& dom = surface_->domain();
     si.uv = Vec2(static_cast<float>((params.x - dom.u0) / dom.width()),

@@ -9,6 +9,7 @@
 #include <glm/matrix.hpp>
 
 #include "strahl/core/error.h"
+#include "strahl/core/transform.h"
 
 namespace strahl {
 
@@ -139,7 +140,7 @@ TessellatedSurface::TessellatedSurface(ParametricSurfacePtr surface, Tessellatio
     : surface_(std::move(surface)),
       params_(std::move(tessellation.params)),
       patchFirstTriangle_(std::move(tessellation.patchFirstTriangle)),
-      normalToWorld_(glm::transpose(glm::inverse(glm::dmat3(glm::dmat4(objectToWorld))))),
+      normalToWorld_(normalMatrix(objectToWorld)),
       normals_(normals) {}
 
 uint32_t TessellatedSurface::patchOf(uint32_t prim) const {
@@ -160,7 +161,7 @@ SurfaceInteraction TessellatedSurface::interaction(const TriangleMesh& worldMesh
     const Vec2 uv = parameters(worldMesh, prim, b1, b2);
     if (normals_ == ParametricNormals::Exact) {
         const DVec3 n = surface_->normal(patchOf(prim), uv.x, uv.y);
-        const Vec3 world = Vec3(normalToWorld_ * n);
+        const Vec3 world = normalToWorld_ * Vec3(n);
         const float len = glm::length(world);
         if (len > 0.0f && std::isfinite(len)) {
             si.Ns = world / len;

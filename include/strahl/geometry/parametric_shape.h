@@ -104,7 +104,7 @@ private:
     bool owns(const Cell& cell, const Rect& rect, double& u, double& v) const noexcept;
 
     ParametricSurfacePtr surface_;
-    glm::dmat4 toObject_;
+    glm::dmat4 toWorld_, toObject_;
     glm::dmat3 normalToWorld_;
     double tolerance_ = 0.0;
     std::vector<Cell> cells_;

@@ -23,8 +23,6 @@
 #include <cstdint>
 #include <vector>
 
-#include <glm/mat3x3.hpp>
-
 #include "strahl/geometry/parametric_grid.h"
 #include "strahl/geometry/parametric_surface.h"
 #include "strahl/geometry/triangle_mesh.h"
@@ -67,7 +65,7 @@ private:
     ParametricSurfacePtr surface_;
     std::vector<Vec2> params_;
     std::vector<uint32_t> patchFirstTriangle_;
-    glm::dmat3 normalToWorld_;
+    Mat3 normalToWorld_;  // inverse transpose of objectToWorld's linear part
     ParametricNormals normals_;
 };
 
