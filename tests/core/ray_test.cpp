@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "strahl/core/rng.h"
+#include "strahl/core/sampler.h"
 
 namespace strahl {
 namespace {

@@ -51,31 +51,4 @@ inline Pcg32 pixelSampleRng(uint64_t seed, uint32_t px, uint32_t py, uint32_t sa
     return Pcg32(mixBits(seed ^ mixBits(pixel)), mixBits(sample + 0x9E3779B97F4A7C15ULL * seed));
 }
 
-// The random numbers of one camera sample: pixelSampleRng(seed, pixel, sample),
-// seeded on first use, so a sample that draws nothing (one centred sample
-// shaded by a deterministic integrator) costs nothing.
-class SampleRng {
-public:
-    SampleRng() = default;
-    SampleRng(uint64_t seed, uint32_t px, uint32_t py, uint32_t sample)
-        : seed_(seed), px_(px), py_(py), sample_(sample) {}
-
-    float nextFloat() { return generator().nextFloat(); }
-    uint32_t nextUint() { return generator().nextUint(); }
-
-private:
-    Pcg32& generator() {
-        if (!seeded_) {
-            rng_ = pixelSampleRng(seed_, px_, py_, sample_);
-            seeded_ = true;
-        }
-        return rng_;
-    }
-
-    Pcg32 rng_;
-    uint64_t seed_ = 0;
-    uint32_t px_ = 0, py_ = 0, sample_ = 0;
-    bool seeded_ = false;
-};
-
 }  // namespace strahl

@@ -1,0 +1,108 @@
+#pragma once
+// The low-discrepancy sampler: Owen-scrambled Sobol points, padded in pairs of
+// dimensions, as Burley 2020 ("Practical Hash-based Owen Scrambling", JCGT
+// 9(4)) describes and pbrt-v4's PaddedSobolSampler uses.
+//
+// Every value is a pure function of (seed, pixel, sample index, dimension):
+//  - dimension pair k of a pixel gets its own hash h = H(seed, pixel, k);
+//  - the sample index is shuffled by a nested uniform scramble seeded by h,
+//    which decorrelates the pairs from each other;
+//  - the shuffled index picks a point of the first two Sobol dimensions (a
+//    (0,2)-sequence in base 2), each Owen-scrambled with a seed derived from h.
+// Hence any 2^m consecutive samples of one pair are stratified in every
+// elementary interval of area 2^-m, and the image depends neither on threads
+// nor on tile order. Consumers draw dimensions in a fixed order per sample.
+
+#include <cstdint>
+
+#include "strahl/core/math.h"
+#include "strahl/core/rng.h"
+
+namespace strahl {
+
+namespace sobol {
+
+constexpr uint32_t reverseBits(uint32_t x) {
+    x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+    x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+    x = ((x >> 4) & 0x0F0F0F0Fu) | ((x & 0x0F0F0F0Fu) << 4);
+    x = ((x >> 8) & 0x00FF00FFu) | ((x & 0x00FF00FFu) << 8);
+    return (x >> 16) | (x << 16);
+}
+
+// Burley's improved Laine-Karras hash: a random permutation of the integers
+// that only lets higher bits depend on lower ones, i.e. an Owen scramble of
+// the bit-reversed value. The constants are Burley's (listing 3).
+constexpr uint32_t laineKarrasPermutation(uint32_t x, uint32_t seed) {
+    x ^= x * 0x3d20adeau;
+    x += seed;
+    x *= (seed >> 16) | 1u;
+    x ^= x * 0x05526c56u;
+    x ^= x * 0x53a22864u;
+    return x;
+}
+
+// Owen scramble of a 32-bit binary fraction (most significant bit = 1/2).
+constexpr uint32_t nestedUniformScramble(uint32_t x, uint32_t seed) {
+    return reverseBits(laineKarrasPermutation(reverseBits(x), seed));
+}
+
+// The first Sobol dimension: the van der Corput sequence (bit reversal).
+constexpr uint32_t dimension0(uint32_t index) { return reverseBits(index); }
+
+// The second Sobol dimension: generator matrix = Pascal's triangle mod 2, whose
+// columns follow v_{k+1} = v_k ^ (v_k >> 1) from v_0 = 2^31.
+constexpr uint32_t dimension1(uint32_t index) {
+    uint32_t result = 0;
+    for (uint32_t v = 1u << 31; index != 0; index >>= 1, v ^= v >> 1)
+        if (index & 1u) result ^= v;
+    return result;
+}
+
+// A 32-bit fraction to a float in [0, 1): the top 24 bits, so 1 is never returned.
+constexpr float toUnitFloat(uint32_t x) { return static_cast<float>(x >> 8) * 0x1p-24f; }
+
+}  // namespace sobol
+
+class Sampler {
+public:
+    Sampler() = default;
+    Sampler(uint64_t seed, int px, int py, uint32_t sampleIndex)
+        : pixelHash_(mixBits(seed ^ mixBits((static_cast<uint64_t>(static_cast<uint32_t>(py)) << 32) |
+                                            static_cast<uint32_t>(px)))),
+          index_(sampleIndex) {}
+
+    // The next dimension (a pair is used for it; the second half is dropped so
+    // that 1D and 2D requests stay aligned to pairs).
+    float get1D() {
+        const uint64_t h = pairHash();
+        const uint32_t i = shuffledIndex(h);
+        return sobol::toUnitFloat(
+            sobol::nestedUniformScramble(sobol::dimension0(i), static_cast<uint32_t>(h >> 32)));
+    }
+    // The next pair of dimensions.
+    Vec2 get2D() {
+        const uint64_t h = pairHash();
+        const uint32_t i = shuffledIndex(h);
+        const uint64_t h2 = mixBits(h ^ 0x5851F42D4C957F2DULL);
+        return Vec2(sobol::toUnitFloat(sobol::nestedUniformScramble(
+                        sobol::dimension0(i), static_cast<uint32_t>(h >> 32))),
+                    sobol::toUnitFloat(sobol::nestedUniformScramble(
+                        sobol::dimension1(i), static_cast<uint32_t>(h2))));
+    }
+
+    uint32_t sampleIndex() const { return index_; }
+    uint32_t dimension() const { return pair_; }  // pairs drawn so far
+
+private:
+    uint64_t pairHash() { return mixBits(pixelHash_ + 0x9E3779B97F4A7C15ULL * ++pair_); }
+    uint32_t shuffledIndex(uint64_t h) const {
+        return sobol::nestedUniformScramble(index_, static_cast<uint32_t>(h));
+    }
+
+    uint64_t pixelHash_ = 0;
+    uint32_t index_ = 0;
+    uint32_t pair_ = 0;
+};
+
+}  // namespace strahl
