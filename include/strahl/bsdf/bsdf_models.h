@@ -1,0 +1,95 @@
+#pragma once
+// The scattering models behind strahl::Bsdf, one struct per model, each with
+// f / pdf / sample in the local frame. Bsdf builds them on the fly from its
+// parameters and dispatches on its kind; use them directly only in tests.
+//
+// Opaque models (all but DielectricModel) see wo in the upper hemisphere only
+// (Bsdf mirrors the lower one onto it) and return 0 / nullopt for wi below.
+// Derivations and references: docs/materials.md.
+
+#include <optional>
+
+#include "strahl/bsdf/bsdf.h"
+#include "strahl/bsdf/microfacet.h"
+
+namespace strahl::bsdf_models {
+
+// Lambert: f = R / pi, cosine-weighted sampling.
+struct LambertModel {
+    Color reflectance;
+
+    Color f(const Vec3& wo, const Vec3& wi) const;
+    float pdf(const Vec3& wo, const Vec3& wi) const;
+    std::optional<BsdfSample> sample(const Vec3& wo, float uLobe, const Vec2& u) const;
+};
+
+// kd / pi plus a normalised cos^n lobe: around the mirror direction (modified
+// Phong) or of the half vector (Blinn-Phong, Ashikhmin-Shirley normalisation).
+struct PhongModel {
+    Color kd, ks;
+    float exponent = 1.0f;
+    bool blinn = false;
+
+    // Probability of sampling the specular lobe: mean(ks) / (mean(kd) + mean(ks)).
+    float specularProbability() const;
+    Color specularF(const Vec3& wo, const Vec3& wi) const;
+    float specularPdf(const Vec3& wo, const Vec3& wi) const;
+    Color f(const Vec3& wo, const Vec3& wi) const;
+    float pdf(const Vec3& wo, const Vec3& wi) const;
+    std::optional<BsdfSample> sample(const Vec3& wo, float uLobe, const Vec2& u) const;
+};
+
+// GGX conductor with exact complex Fresnel; a delta mirror when smooth.
+struct ConductorModel {
+    GgxDistribution ggx;
+    Color eta, k;
+
+    Color f(const Vec3& wo, const Vec3& wi) const;
+    float pdf(const Vec3& wo, const Vec3& wi) const;
+    std::optional<BsdfSample> sample(const Vec3& wo, float uLobe, const Vec2& u) const;
+};
+
+// Smooth or rough (Walter et al. 2007) dielectric interface, radiance transport.
+struct DielectricModel {
+    GgxDistribution ggx;
+    float eta = 1.5f;  // n_inside / n_outside, inside = -z
+    Color tint{1.0f};
+
+    bool smooth() const { return ggx.smooth() || eta == 1.0f; }
+    Color f(const Vec3& wo, const Vec3& wi) const;
+    float pdf(const Vec3& wo, const Vec3& wi) const;
+    std::optional<BsdfSample> sample(const Vec3& wo, float uLobe, const Vec2& u) const;
+};
+
+// Lambertian base under a smooth (delta) or rough (GGX) dielectric coat.
+struct PlasticModel {
+    GgxDistribution ggx;
+    Color kd;
+    float eta = 1.5f;
+    float internalReflectance = 0.0f;  // Fbar_dr seen from inside the coat
+
+    float specularProbability(float fresnelO) const;
+    Color diffuseF(const Vec3& wo, const Vec3& wi) const;
+    Color f(const Vec3& wo, const Vec3& wi) const;
+    float pdf(const Vec3& wo, const Vec3& wi) const;
+    std::optional<BsdfSample> sample(const Vec3& wo, float uLobe, const Vec2& u) const;
+};
+
+// glTF 2.0 metallic-roughness: Schlick GGX specular with F0 = lerp(f0Dielectric,
+// base, metallic), plus (1 - metallic) base-coloured diffuse coupled to the
+// dielectric specular's albedo (Kelemen & Szirmay-Kalos 2001).
+struct MetallicRoughnessModel {
+    GgxDistribution ggx;
+    Color base;
+    float metallic = 0.0f;
+    float f0Dielectric = 0.04f;
+
+    Color specularFresnel(float cosThetaH) const;
+    float specularProbability(const Vec3& wo) const;
+    Color diffuseF(const Vec3& wo, const Vec3& wi) const;
+    Color f(const Vec3& wo, const Vec3& wi) const;
+    float pdf(const Vec3& wo, const Vec3& wi) const;
+    std::optional<BsdfSample> sample(const Vec3& wo, float uLobe, const Vec2& u) const;
+};
+
+}  // namespace strahl::bsdf_models

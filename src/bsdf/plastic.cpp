@@ -1,0 +1,89 @@
+// Plastic: a Lambertian base under a dielectric coat, smooth (delta specular)
+// or rough (GGX). The diffuse term accounts for the two coat crossings and the
+// light bouncing between base and coat (Mitsuba's "plastic"); derivation in
+// docs/materials.md, "Plastic".
+
+#include "strahl/bsdf/bsdf_models.h"
+#include "strahl/bsdf/fresnel.h"
+#include "strahl/bsdf/local_frame.h"
+#include "strahl/core/sampling.h"
+
+namespace strahl::bsdf_models {
+
+namespace {
+
+float mean(const Color& c) {
+    return (c.r + c.g + c.b) / 3.0f;
+}
+
+}  // namespace
+
+float PlasticModel::specularProbability(float fresnelO) const {
+    // Lobe weights: the coat's reflectance F(wo) against the diffuse albedo
+    // (1 - F(wo)) kd (1 - Fbar_int) / (1 - kd Fbar_int) (see diffuseF).
+    const Color multiple = (Color(1.0f) - kd * internalReflectance);
+    const Color diffuseAlbedo = kd * (1.0f - internalReflectance) / multiple;
+    const float d = (1.0f - fresnelO) * mean(diffuseAlbedo);
+    return fresnelO + d > 0.0f ? fresnelO / (fresnelO + d) : 1.0f;
+}
+
+Color PlasticModel::diffuseF(const Vec3& wo, const Vec3& wi) const {
+    if (wo.z <= 0.0f || wi.z <= 0.0f) return Color(0.0f);
+    // (1 - F(wi)) (1 - F(wo)) kd / (pi eta^2 (1 - kd Fbar_int)): transmission in
+    // and out of the coat, the radiance compression 1 / eta^2 of the way out,
+    // and the geometric series of base-coat inter-reflections.
+    const float tIn = 1.0f - fresnelDielectric(wi.z, eta);
+    const float tOut = 1.0f - fresnelDielectric(wo.z, eta);
+    const Color denom = kPi * eta * eta * (Color(1.0f) - kd * internalReflectance);
+    return tIn * tOut * kd / denom;
+}
+
+Color PlasticModel::f(const Vec3& wo, const Vec3& wi) const {
+    if (wo.z <= 0.0f || wi.z <= 0.0f) return Color(0.0f);
+    Color result = diffuseF(wo, wi);
+    if (!ggx.smooth()) {
+        const Vec3 m = glm::normalize(wo + wi);
+        const float fresnel = fresnelDielectric(glm::dot(wo, m), eta);
+        result += Color(fresnel * ggx.d(m) * ggx.g(wo, wi) / (4.0f * wo.z * wi.z));
+    }
+    return result;
+}
+
+float PlasticModel::pdf(const Vec3& wo, const Vec3& wi) const {
+    if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
+    const float ps = specularProbability(fresnelDielectric(wo.z, eta));
+    float result = (1.0f - ps) * cosineHemispherePdf(wi.z);
+    if (!ggx.smooth()) {
+        const Vec3 m = glm::normalize(wo + wi);
+        result += ps * ggx.visibleD(wo, m) / (4.0f * glm::dot(wo, m));
+    }
+    return result;
+}
+
+std::optional<BsdfSample> PlasticModel::sample(const Vec3& wo, float uLobe, const Vec2& u) const {
+    if (wo.z <= 0.0f) return std::nullopt;
+    const float fresnelO = fresnelDielectric(wo.z, eta);
+    const float ps = specularProbability(fresnelO);
+    BsdfSample s;
+    if (uLobe < ps) {
+        if (ggx.smooth()) {
+            s.wi = reflectZ(wo);
+            s.f = Color(fresnelO / s.wi.z);
+            s.pdf = ps;
+            s.specular = true;
+            return s;
+        }
+        const Vec3 m = ggx.sampleVisibleNormal(wo, u);
+        if (glm::dot(wo, m) <= 0.0f) return std::nullopt;
+        s.wi = reflectDir(wo, m);
+    } else {
+        s.wi = sampleCosineHemisphere(u);
+    }
+    if (s.wi.z <= 0.0f) return std::nullopt;
+    s.pdf = pdf(wo, s.wi);
+    if (!(s.pdf > 0.0f)) return std::nullopt;
+    s.f = f(wo, s.wi);
+    return s;
+}
+
+}  // namespace strahl::bsdf_models
