@@ -1,0 +1,285 @@
+// Image textures through a private OpenImageIO TextureSystem (see
+// texture_system.h and docs/textures.md).
+
+#include "strahl/texture/texture_system.h"
+
+#include <OpenImageIO/imageio.h>
+#include <OpenImageIO/texture.h>
+#include <OpenImageIO/ustring.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <map>
+#include <string>
+#include <system_error>
+#include <utility>
+#include <vector>
+
+#include "strahl/core/error.h"
+
+namespace fs = std::filesystem;
+
+namespace strahl {
+
+namespace {
+
+using OiioSystem = OIIO::TextureSystem;
+
+// Emulated tile size for scanline images (PNG, JPEG, most TIFFs): OIIO's
+// recommended 64 x 64, a few KiB to 64 KiB per tile, instead of caching each
+// such image as one tile of its whole resolution.
+constexpr int kAutotile = 64;
+
+// A footprint of one period covers the whole image, which is the 1 x 1 top of
+// the MIP pyramid; larger (or infinite) ones change nothing, so they are
+// clamped before OIIO turns them into texel counts.
+constexpr float kMaxFootprint = 1.0f;
+
+// Triplanar projections whose normalised weight is below this are skipped and
+// the others renormalised: at most 0.1% of the texture's range is lost, and an
+// axis-aligned face costs one lookup instead of three.
+constexpr float kMinTriplanarWeight = 1e-3f;
+
+// The sRGB EOTF (IEC 61966-2-1): code value in [0, 1] to linear.
+float srgbToLinear(float c) {
+    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+// OIIO's messages may span lines and end in a newline; keep them on one line.
+std::string oneLine(std::string message) {
+    for (char& c : message)
+        if (c == '\n' || c == '\r') c = ' ';
+    while (!message.empty() && message.back() == ' ') message.pop_back();
+    return message.empty() ? std::string("unknown error") : message;
+}
+
+// Texture coordinates into [0, 1]: the same texels under periodic wrapping,
+// and no float-to-int overflow inside OIIO for huge coordinates. Non-finite
+// coordinates look up st = 0.
+float wrapPeriodic(float x) { return std::isfinite(x) ? x - std::floor(x) : 0.0f; }
+
+// NaN and negative footprints are 0 (the finest level).
+float clampFootprint(float footprint) {
+    return footprint > 0.0f ? std::min(footprint, kMaxFootprint) : 0.0f;
+}
+
+bool isSrgbFormat(OIIO::TypeDesc format) {
+    switch (format.basetype) {
+        case OIIO::TypeDesc::UINT8:
+        case OIIO::TypeDesc::INT8:
+        case OIIO::TypeDesc::UINT16:
+        case OIIO::TypeDesc::INT16:
+            return true;
+        default:
+            return false;
+    }
+}
+
+void setAttribute(OiioSystem& system, const char* name, int value) {
+    if (!system.attribute(name, value))
+        fail("OpenImageIO rejected the texture option ", name, " = ", value);
+}
+
+void setAttribute(OiioSystem& system, const char* name, float value) {
+    if (!system.attribute(name, value))
+        fail("OpenImageIO rejected the texture option ", name, " = ", value);
+}
+
+// One registered (file, encoding). Stored channels: 1 grey, 2 grey + alpha,
+// 3 RGB, 4 or more RGBA followed by channels strahl does not use.
+struct Entry {
+    OiioSystem::TextureHandle* handle = nullptr;
+    std::string file;  // as the caller spelled it, for messages
+    int channels = 0;  // stored channels used, 1 to 4
+    bool srgb = false;  // decode the colour channels from sRGB
+
+    bool grey() const { return channels <= 2; }
+    // The stored channel of RGBA channel c (0 to 3), or -1 for alpha without
+    // an alpha channel.
+    int storedChannel(int c) const {
+        if (c < 3) return grey() ? 0 : c;
+        return channels == 2 ? 1 : channels == 4 ? 3 : -1;
+    }
+};
+
+}  // namespace
+
+struct TextureSystem::Impl {
+    OiioSystem* system = nullptr;
+    uint64_t id = 0;  // unique in the process, never reused
+    std::vector<Entry> entries;
+    std::map<std::pair<std::string, TextureEncoding>, uint32_t> index;
+
+    Impl() {
+        static std::atomic<uint64_t> counter{0};
+        id = counter.fetch_add(1) + 1;
+    }
+    ~Impl() {
+        if (system) OiioSystem::destroy(system);
+    }
+
+    // The calling thread's OIIO per-thread record for this system, fetched
+    // once per thread and then kept in a thread-local slot. The slot names its
+    // system by id, not address: a new system may reuse a destroyed one's.
+    OiioSystem::Perthread* perthread() const {
+        thread_local uint64_t owner = 0;
+        thread_local OiioSystem::Perthread* info = nullptr;
+        if (owner != id) {
+            info = system->get_perthread_info();
+            owner = id;
+        }
+        return info;
+    }
+
+    const Entry& entry(TextureHandle texture) const {
+        if (texture.index >= entries.size())
+            fail("invalid texture handle ", texture.index, " (", entries.size(),
+                 " textures registered)");
+        return entries[texture.index];
+    }
+
+    // `count` filtered stored channels from `first` on, into out[0..count-1].
+    void filter(const Entry& e, int first, int count, const Vec2& st, float footprint,
+                float* out) const {
+        OIIO::TextureOpt opt;
+        opt.firstchannel = first;
+        opt.swrap = OIIO::TextureOpt::WrapPeriodic;
+        opt.twrap = OIIO::TextureOpt::WrapPeriodic;
+        // Isotropic footprint: two MIP levels, bilinear within each. Bilinear
+        // (not OIIO's default bicubic B-spline, which blurs) so a texel centre
+        // at footprint 0 returns the texel.
+        opt.mipmode = OIIO::TextureOpt::MipModeTrilinear;
+        opt.interpmode = OIIO::TextureOpt::InterpBilinear;
+        const float width = clampFootprint(footprint);
+        if (!system->texture(e.handle, perthread(), opt, wrapPeriodic(st.x), wrapPeriodic(st.y),
+                             width, 0.0f, 0.0f, width, count, out))
+            fail(e.file, ": texture lookup failed: ", oneLine(system->geterror()));
+    }
+};
+
+TextureSystem::TextureSystem(float cacheMegabytes) : impl_(std::make_unique<Impl>()) {
+    if (!(cacheMegabytes > 0.0f) || !std::isfinite(cacheMegabytes))
+        fail("the texture cache size must be a positive number of megabytes, not ",
+             cacheMegabytes);
+    // Private (not shared): its own ImageCache, sized and configured here.
+    impl_->system = OiioSystem::create(false);
+    if (!impl_->system) fail("cannot create an OpenImageIO texture system: ", OIIO::geterror());
+    OiioSystem& system = *impl_->system;
+    setAttribute(system, "max_memory_MB", cacheMegabytes);
+    setAttribute(system, "automip", 1);  // MIP levels on the fly for JPEG, PNG, ...
+    setAttribute(system, "autotile", kAutotile);
+    // Values as stored: colour channels not multiplied by alpha (PNG, TIFF).
+    setAttribute(system, "unassociatedalpha", 1);
+}
+
+TextureSystem::~TextureSystem() = default;
+
+TextureHandle TextureSystem::add(const fs::path& file, TextureEncoding encoding) {
+    const std::string name = file.string();
+    std::error_code ec;
+    if (!fs::exists(file, ec)) fail(name, ": cannot read the texture: no such file");
+    if (!fs::is_regular_file(file, ec))
+        fail(name, ": cannot read the texture: not a regular file");
+    const fs::path canonical = fs::canonical(file, ec);
+    if (ec) fail(name, ": cannot read the texture: ", ec.message());
+
+    auto key = std::make_pair(canonical.string(), encoding);
+    if (const auto found = impl_->index.find(key); found != impl_->index.end())
+        return TextureHandle{found->second};
+
+    // The header, read now so that an unreadable file fails before rendering.
+    OIIO::ImageSpec spec;
+    {
+        std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(key.first);
+        if (!in) fail(name, ": cannot read the texture: ", oneLine(OIIO::geterror()));
+        spec = in->spec();
+        in->close();
+    }
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+        fail(name, ": the texture is empty (", spec.width, " x ", spec.height, ", ",
+             spec.nchannels, " channels)");
+    if (spec.depth > 1)
+        fail(name, ": is a volume image (depth ", spec.depth, "), not a 2D texture");
+
+    OiioSystem& system = *impl_->system;
+    OiioSystem::Perthread* perthread = impl_->perthread();
+    OiioSystem::TextureHandle* handle =
+        system.get_texture_handle(OIIO::ustring(key.first), perthread);
+    OIIO::ImageSpec cached;
+    if (!handle || !system.good(handle) || !system.get_imagespec(handle, perthread, 0, cached))
+        fail(name, ": cannot read the texture: ", oneLine(system.geterror()));
+
+    Entry entry;
+    entry.handle = handle;
+    entry.file = name;
+    entry.channels = std::min(spec.nchannels, 4);
+    entry.srgb = encoding == TextureEncoding::Color && isSrgbFormat(spec.format);
+
+    const auto index = static_cast<uint32_t>(impl_->entries.size());
+    impl_->entries.push_back(std::move(entry));
+    impl_->index.emplace(std::move(key), index);
+    return TextureHandle{index};
+}
+
+Vec4 TextureSystem::lookup(TextureHandle texture, const Vec2& st, float footprint) const {
+    const Entry& e = impl_->entry(texture);
+    float v[4] = {};
+    impl_->filter(e, 0, e.channels, st, footprint, v);
+    Vec4 result = e.grey() ? Vec4(v[0], v[0], v[0], e.channels == 2 ? v[1] : 1.0f)
+                           : Vec4(v[0], v[1], v[2], e.channels == 4 ? v[3] : 1.0f);
+    if (e.srgb)
+        for (int c = 0; c < 3; ++c) result[c] = srgbToLinear(result[c]);
+    return result;
+}
+
+Color TextureSystem::lookupColor(TextureHandle texture, const Vec2& st, float footprint) const {
+    const Entry& e = impl_->entry(texture);
+    float v[3] = {};
+    impl_->filter(e, 0, e.grey() ? 1 : 3, st, footprint, v);
+    Color result = e.grey() ? Color(v[0]) : Color(v[0], v[1], v[2]);
+    if (e.srgb)
+        for (int c = 0; c < 3; ++c) result[c] = srgbToLinear(result[c]);
+    return result;
+}
+
+float TextureSystem::lookupChannel(TextureHandle texture, int channel, const Vec2& st,
+                                   float footprint) const {
+    const Entry& e = impl_->entry(texture);
+    if (channel < 0 || channel > 3)
+        fail(e.file, ": texture channel ", channel, " requested; channels are 0 to 3 (RGBA)");
+    const int stored = e.storedChannel(channel);
+    if (stored < 0) return 1.0f;  // alpha of an image without one
+    float value = 0.0f;
+    impl_->filter(e, stored, 1, st, footprint, &value);
+    return e.srgb && channel < 3 ? srgbToLinear(value) : value;
+}
+
+Vec4 TextureSystem::triplanar(TextureHandle texture, const Vec3& p, const Vec3& n, float scale,
+                              float sharpness, float footprint) const {
+    // |n|^sharpness relative to the largest component: scale-invariant in n,
+    // and the dominant weight is 1 however large the exponent.
+    const Vec3 a = glm::abs(n);
+    const float largest = maxComponent(a);
+    Vec3 w(1.0f);  // a zero or non-finite normal blends all three equally
+    if (isFinite(n) && largest > 0.0f) {
+        const float k = sharpness > 0.0f ? sharpness : 0.0f;  // NaN, negative: no sharpening
+        w = Vec3(std::pow(a.x / largest, k), std::pow(a.y / largest, k),
+                 std::pow(a.z / largest, k));
+    }
+    w /= w.x + w.y + w.z;
+    for (int i = 0; i < 3; ++i)
+        if (w[i] < kMinTriplanarWeight) w[i] = 0.0f;
+    w /= w.x + w.y + w.z;  // the dominant weight survives, so the sum is positive
+
+    const Vec3 q = p * scale;
+    Vec4 result(0.0f);
+    if (w.x > 0.0f) result += w.x * lookup(texture, Vec2(q.y, q.z), footprint);
+    if (w.y > 0.0f) result += w.y * lookup(texture, Vec2(q.x, q.z), footprint);
+    if (w.z > 0.0f) result += w.z * lookup(texture, Vec2(q.x, q.y), footprint);
+    return result;
+}
+
+size_t TextureSystem::textureCount() const { return impl_->entries.size(); }
+
+}  // namespace strahl
