@@ -12,6 +12,16 @@ find_package(nlohmann_json 3.10 REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(Threads REQUIRED)
 
+# tinygltf (libtinygltf-dev) is used header-only: src/meshio/gltf_loader.cpp
+# compiles its implementation without image decoding. Debian's TinyGLTF config
+# would link its shared library, which decodes every image with stb_image, so
+# only the header is taken (as a system header: its warnings are not ours). Its
+# implementation includes <nlohmann/json.hpp>, found above.
+find_path(TINYGLTF_INCLUDE_DIR tiny_gltf.h REQUIRED)
+add_library(strahl::tinygltf INTERFACE IMPORTED)
+set_target_properties(strahl::tinygltf PROPERTIES
+  INTERFACE_INCLUDE_DIRECTORIES "${TINYGLTF_INCLUDE_DIR}")
+
 # Two Debian packaging quirks leave imported targets with include directories
 # that do not exist, which CMake refuses at generate time:
 #  - OpenImageIO lists /usr/include/opencv4 although OpenCV is optional;

@@ -9,7 +9,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libembree-dev libopenimageio-dev libopenexr-dev libopencolorio-dev
   libglm-dev libtbb-dev libgtest-dev libgmock-dev libbenchmark-dev
-  nlohmann-json3-dev libcli11-dev
+  nlohmann-json3-dev libcli11-dev libtinygltf-dev
 )
 missing=()
 for p in "${packages[@]}"; do

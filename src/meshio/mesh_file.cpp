@@ -81,8 +81,9 @@ LoadedMesh loadMeshFile(const fs::path& file) {
     const std::string ext = meshio::toLower(file.extension().string());
     if (ext == ".obj") return loadObj(file);
     if (ext == ".ply") return loadPly(file);
+    if (ext == ".gltf" || ext == ".glb") return loadGltf(file);
     fail(file.string(), ": unknown mesh file extension '", file.extension().string(),
-         "' (expected .obj or .ply)");
+         "' (expected .obj, .ply, .gltf or .glb)");
 }
 
 fs::path findFileCaseInsensitive(const fs::path& dir, const std::string& name) {

@@ -1,8 +1,9 @@
 #pragma once
 // Mesh file loaders. Each returns one TriangleMesh (polygons fan-triangulated)
 // plus the materials its faces refer to, and throws strahl::Error with
-// "file:line: what" (text) or "file: byte offset N: what" (binary) on any
-// malformed, truncated or out-of-range input.
+// "file:line: what" (text), "file: byte offset N: what" (binary) or
+// "file: meshes[0].primitives[1]: what" (glTF) on any malformed, truncated or
+// out-of-range input.
 
 #include <filesystem>
 #include <functional>
@@ -14,12 +15,28 @@
 
 namespace strahl {
 
-// A surface description found in a mesh file (.mtl for OBJ).
+// A surface description found in a mesh file: an OBJ .mtl entry or a glTF 2.0
+// material. The scene builder maps it onto strahl's materials
+// (docs/materials.md, "Materials from mesh files"); textures are resolved paths
+// on disk, empty when absent.
 struct MeshMaterial {
+    enum class Source { Obj, Gltf };
     std::string name;
-    Color diffuse{0.8f};
-    Color emission{0.0f};
-    std::filesystem::path diffuseTexture;  // resolved on disk (case-insensitive), or empty
+    Source source = Source::Obj;
+    Color diffuse{0.8f};     // OBJ Kd; glTF baseColorFactor (rgb)
+    Color specular{0.0f};    // OBJ Ks
+    float shininess = 0.0f;  // OBJ Ns (Phong exponent)
+    float ior = 1.5f;        // OBJ Ni; glTF KHR_materials_ior
+    float dissolve = 1.0f;   // OBJ d (or 1 - Tr): 1 opaque
+    int illum = 2;           // OBJ illumination model (5, 7: mirror; 4, 6, 7, 9: glass)
+    Color transmission{0.0f};  // OBJ Tf; glTF KHR_materials_transmission factor (grey)
+    float metallic = 1.0f;   // glTF metallicFactor
+    float roughness = 1.0f;  // glTF roughnessFactor (perceptual)
+    Color emission{0.0f};    // OBJ Ke; glTF emissiveFactor x KHR_materials_emissive_strength
+    std::filesystem::path diffuseTexture;    // OBJ map_Kd; glTF baseColorTexture
+    std::filesystem::path normalTexture;     // OBJ norm (not map_Bump/bump); glTF normalTexture
+    std::filesystem::path metallicRoughnessTexture;  // glTF (B: metallic, G: roughness)
+    std::filesystem::path emissionTexture;   // OBJ map_Ke; glTF emissiveTexture
 };
 
 struct LoadedMesh {
@@ -29,6 +46,9 @@ struct LoadedMesh {
 
 LoadedMesh loadObj(const std::filesystem::path& file);
 LoadedMesh loadPly(const std::filesystem::path& file);
+// glTF 2.0, .gltf or .glb (docs/mesh-files.md): the default scene flattened into
+// world space, materials with source Gltf, uvs stored as (u, 1 - v).
+LoadedMesh loadGltf(const std::filesystem::path& file);
 
 // Recoverable problems (a missing .mtl, an unknown material, an attribute only
 // some corners have) are warnings, not errors. They go to the handler set here,
@@ -38,7 +58,7 @@ LoadedMesh loadPly(const std::filesystem::path& file);
 using MeshWarningHandler = std::function<void(const std::string& message)>;
 void setMeshWarningHandler(MeshWarningHandler handler);
 
-// Dispatches on the extension (.obj, .ply; case-insensitive).
+// Dispatches on the extension (.obj, .ply, .gltf, .glb; case-insensitive).
 LoadedMesh loadMeshFile(const std::filesystem::path& file);
 
 // Finds `name` (which may contain sub-folders) below `dir`, matching each path
