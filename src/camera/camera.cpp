@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "strahl/core/error.h"
+#include "strahl/core/sampling.h"
 
 namespace strahl {
 
@@ -30,7 +31,7 @@ CameraFrame CameraFrame::lookAt(const Vec3& eye, const Vec3& target, const Vec3&
 }
 
 Camera::Camera(const CameraFrame& frame, Projection projection, ImageWindow window,
-               float focalDistance, int nx, int ny)
+               float focalDistance, int nx, int ny, const ThinLens& lens)
     : frame_(frame),
       projection_(projection),
       window_(window),
@@ -38,12 +39,19 @@ Camera::Camera(const CameraFrame& frame, Projection projection, ImageWindow wind
       nx_(nx),
       ny_(ny),
       du_((window.r - window.l) / static_cast<float>(nx)),
-      dv_((window.b - window.t) / static_cast<float>(ny)) {
+      dv_((window.b - window.t) / static_cast<float>(ny)),
+      lensRadius_(lens.apertureRadius),
+      focus_(lens.focusDistance.value_or(focalDistance)) {
     if (nx <= 0 || ny <= 0) fail("camera: image size must be positive, got ", nx, "x", ny);
     if (!(window.l < 0.0f && 0.0f < window.r && window.b < 0.0f && 0.0f < window.t))
         fail("camera: the image window must satisfy l < 0 < r and b < 0 < t");
     if (!(focalDistance > 0.0f) || !std::isfinite(focalDistance))
         fail("camera: the focal distance must be positive and finite");
+    if (!(lensRadius_ >= 0.0f) || !std::isfinite(lensRadius_))
+        fail("camera: the aperture radius must be finite and >= 0 (0 is a pinhole), got ",
+             lensRadius_);
+    if (!(focus_ > 0.0f) || !std::isfinite(focus_))
+        fail("camera: the focus distance must be positive and finite, got ", focus_);
 }
 
 ImageWindow Camera::windowFromFov(float fovY, float focalDistance, int nx, int ny) {
@@ -66,6 +74,30 @@ Ray Camera::generateRay(float x, float y) const {
         const Vec3 onPlane = -d_ * frame_.w + u * frame_.u + v * frame_.v;
         ray.origin = frame_.e + onPlane;
         ray.dir = glm::normalize(onPlane);
+    }
+    ray.tnear = 0.0f;
+    ray.tfar = kInfinity;
+    return ray;
+}
+
+Ray Camera::generateRay(float x, float y, const Vec2& lensSample) const {
+    // The pinhole takes the unchanged code path, so its rays stay bit-identical.
+    if (lensRadius_ == 0.0f) return generateRay(x, y);
+    const Vec2 disk = lensRadius_ * sampleConcentricDisk(lensSample);
+    const Vec3 lens = disk.x * frame_.u + disk.y * frame_.v;  // L, relative to the lens centre
+    const float u = window_.l + du_ * x;
+    const float v = window_.t + dv_ * y;
+    Ray ray;
+    if (projection_ == Projection::Orthographic) {
+        // Lens centred on the pinhole origin o; focus point o - f w.
+        ray.origin = frame_.e + u * frame_.u + v * frame_.v + lens;
+        ray.dir = glm::normalize(-focus_ * frame_.w - lens);
+    } else {
+        // The pinhole ray e + lambda s meets the focus plane at lambda = f / d; the
+        // ray from e + L to that point crosses the image plane at e + s + (1 - d/f) L.
+        const Vec3 onPlane = -d_ * frame_.w + u * frame_.u + v * frame_.v;
+        ray.origin = frame_.e + onPlane + (1.0f - d_ / focus_) * lens;
+        ray.dir = glm::normalize((focus_ / d_) * onPlane - lens);
     }
     ray.tnear = 0.0f;
     ray.tfar = kInfinity;

@@ -9,7 +9,10 @@ namespace strahl {
 
 
 namespace {
-constexpr std::string_view kAovNames[] = {"normal", "depth", "albedo"};  // enum order
+constexpr std::string_view kAovNames[] = {"normal",   "depth",    "albedo",
+                                          "position", "objectid", "variance"};  // enum order
+
+constexpr float kNoObject = -1.0f;  // the objectid of a miss: no id is negative
 }  // namespace
 
 std::span<const std::string_view> aovNames() { return kAovNames; }
@@ -33,6 +36,12 @@ int aovChannels(AovKind kind) {
         case AovKind::Depth:
             return 1;
         case AovKind::Albedo:
+            return 3;
+        case AovKind::Position:
+            return 3;
+        case AovKind::ObjectId:
+            return 1;
+        case AovKind::Variance:
             return 3;
     }
     fail("invalid AovKind value ", static_cast<int>(kind));
@@ -68,6 +77,17 @@ Film::Film(int fullWidth, int fullHeight, PixelRect crop, std::vector<AovKind> a
             case AovKind::Albedo:
                 albedo_.assign(pixels, Color(0.0f));
                 break;
+            case AovKind::Position:
+                position_.assign(pixels, Vec3(0.0f));
+                hits_.assign(pixels, 0u);
+                break;
+            case AovKind::ObjectId:
+                objectId_.assign(pixels, kNoObject);
+                break;
+            case AovKind::Variance:
+                mean_.assign(pixels, Color(0.0f));
+                m2_.assign(pixels, Color(0.0f));
+                break;
         }
     }
 }
@@ -79,15 +99,25 @@ size_t Film::index(int x, int y) const {
 
 void Film::addSample(int x, int y, const Color& radiance, const AovSample& aov) {
     const size_t i = index(x, y);
+    const bool first = samples_[i] == 0;
     radiance_[i] += radiance;
     ++samples_[i];
-    if (!aov.hit) return;  // a miss adds 0 to the normal and albedo sums and no depth
+    if (!m2_.empty()) {
+        // Welford: the mean moves by delta / n, M2 grows by delta (x - mean_new).
+        // Its own running mean, not the radiance sum over n: the sum's rounding
+        // grows with n, the mean's stays at the size of the values.
+        const Color delta = radiance - mean_[i];
+        mean_[i] += delta / static_cast<float>(samples_[i]);
+        m2_[i] += delta * (radiance - mean_[i]);
+    }
+    if (first && !objectId_.empty() && aov.hit)
+        objectId_[i] = static_cast<float>(aov.objectId);
+    if (!aov.hit) return;  // a miss adds 0 to the normal and albedo sums, no depth or position
     if (!normal_.empty()) normal_[i] += aov.normal;
     if (!albedo_.empty()) albedo_[i] += aov.albedo;
-    if (!depth_.empty()) {
-        depth_[i] += aov.depth;
-        ++hits_[i];
-    }
+    if (!depth_.empty()) depth_[i] += aov.depth;
+    if (!position_.empty()) position_[i] += aov.position;
+    if (!hits_.empty()) ++hits_[i];
 }
 
 std::vector<float> Film::resolveBeauty() const {
@@ -111,15 +141,33 @@ std::vector<float> Film::resolveAov(AovKind kind) const {
     std::vector<float> out(samples_.size() * channels);
     for (size_t i = 0; i < samples_.size(); ++i) {
         float* px = out.data() + channels * i;
-        if (kind == AovKind::Depth) {
-            px[0] = hits_[i] > 0 ? depth_[i] / static_cast<float>(hits_[i]) : kInfinity;
-            continue;
+        const auto n = static_cast<float>(samples_[i]);
+        Vec3 value(0.0f);
+        switch (kind) {
+            case AovKind::Depth:
+                px[0] = hits_[i] > 0 ? depth_[i] / static_cast<float>(hits_[i]) : kInfinity;
+                continue;
+            case AovKind::ObjectId:
+                px[0] = objectId_[i];
+                continue;
+            case AovKind::Normal:
+                if (samples_[i] > 0) value = normal_[i] / n;
+                break;
+            case AovKind::Albedo:
+                if (samples_[i] > 0) value = albedo_[i] / n;
+                break;
+            case AovKind::Position:
+                if (hits_[i] > 0) value = position_[i] / static_cast<float>(hits_[i]);
+                break;
+            case AovKind::Variance:
+                // Sample variance M2 / (n - 1), divided by n for the variance of the
+                // mean. Each M2 term is >= 0 up to rounding; clamp so it never reads < 0.
+                if (samples_[i] > 1) value = glm::max(m2_[i], Color(0.0f)) / ((n - 1.0f) * n);
+                break;
         }
-        const Vec3& sum = kind == AovKind::Normal ? normal_[i] : albedo_[i];
-        const Vec3 mean = samples_[i] > 0 ? sum / static_cast<float>(samples_[i]) : Vec3(0.0f);
-        px[0] = mean.x;
-        px[1] = mean.y;
-        px[2] = mean.z;
+        px[0] = value.x;
+        px[1] = value.y;
+        px[2] = value.z;
     }
     return out;
 }

@@ -114,7 +114,9 @@ void addMetadata(OIIO::ImageSpec& spec, const ImageMetadata& metadata) {
 }
 
 // EXR channel name suffixes, one per channel, after the usual conventions:
-// XYZ for vectors, Z for depth, RGB for colours.
+// XYZ for vectors and points, Z for depth, RGB for colours (the variance is per
+// colour channel), and X for a single non-depth value (Blender's object index
+// pass is IndexOB.X; "Z" would make tools take the ids for depth).
 const char* channelSuffixes(AovKind kind) {
     switch (kind) {
         case AovKind::Normal:
@@ -122,6 +124,12 @@ const char* channelSuffixes(AovKind kind) {
         case AovKind::Depth:
             return "Z";
         case AovKind::Albedo:
+            return "RGB";
+        case AovKind::Position:
+            return "XYZ";
+        case AovKind::ObjectId:
+            return "X";
+        case AovKind::Variance:
             return "RGB";
     }
     fail("invalid AovKind value ", static_cast<int>(kind));
@@ -131,11 +139,17 @@ const char* channelSuffixes(AovKind kind) {
 // of one image composite into the whole.
 OIIO::ImageSpec exrSpec(const Film& film, const OutputSettings& settings,
                         const ImageMetadata& metadata, std::vector<float>& pixels) {
+    const OIIO::TypeDesc format = settings.exrFloat ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF;
     std::vector<std::string> names{"R", "G", "B"};
+    std::vector<OIIO::TypeDesc> formats(3, format);
     std::vector<std::vector<float>> planes{film.resolveBeauty()};
     for (AovKind kind : film.aovs()) {
-        for (const char* suffix = channelSuffixes(kind); *suffix != '\0'; ++suffix)
+        // Ids are always float: half holds integers exactly only up to 2048.
+        const OIIO::TypeDesc aovFormat = kind == AovKind::ObjectId ? OIIO::TypeDesc::FLOAT : format;
+        for (const char* suffix = channelSuffixes(kind); *suffix != '\0'; ++suffix) {
             names.push_back(concat(aovName(kind), ".", *suffix));
+            formats.push_back(aovFormat);
+        }
         planes.push_back(film.resolveAov(kind));
     }
 
@@ -152,9 +166,12 @@ OIIO::ImageSpec exrSpec(const Film& film, const OutputSettings& settings,
         first += planeChannels;
     }
 
-    OIIO::ImageSpec spec(crop.width(), crop.height(), static_cast<int>(channels),
-                         settings.exrFloat ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF);
+    OIIO::ImageSpec spec(crop.width(), crop.height(), static_cast<int>(channels), format);
     spec.channelnames = names;
+    // Per-channel formats only when they differ, so a uniform file stays as it was.
+    if (std::any_of(formats.begin(), formats.end(),
+                    [&](const OIIO::TypeDesc& f) { return f != format; }))
+        spec.channelformats = formats;
     // The constructor named channel 3 "A" and made it alpha; none of ours is.
     spec.alpha_channel = -1;
     spec.z_channel = -1;

@@ -4,10 +4,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "strahl/camera/tile_rays.h"
 #include "strahl/core/error.h"
+#include "strahl/core/sampling.h"
 
 namespace strahl {
 namespace {
@@ -129,10 +134,187 @@ TEST(Camera, WorldToCameraMapsTheFrameToTheAxes) {
     expectNear(Vec3(m * Vec4(f.e + f.w, 1.0f)), Vec3(0, 0, 1));
 }
 
+// Lens samples on a grid over [0, 1)^2 (cell centres), plus the corners of the
+// square, which the concentric map sends to the rim of the disk.
+std::vector<Vec2> lensSamples() {
+    std::vector<Vec2> samples;
+    constexpr int kGrid = 9;
+    for (int j = 0; j < kGrid; ++j)
+        for (int i = 0; i < kGrid; ++i)
+            samples.emplace_back((float(i) + 0.5f) / kGrid, (float(j) + 0.5f) / kGrid);
+    for (const Vec2 corner : {Vec2(0.0f), Vec2(0.0f, 0.999f), Vec2(0.999f, 0.0f), Vec2(0.999f)})
+        samples.push_back(corner);
+    return samples;
+}
+
+// Raster positions inside and on the edges of a 6x4 image.
+const Vec2 kRasterPoints[] = {{0.5f, 0.5f}, {3.25f, 1.75f}, {0.0f, 4.0f}, {6.0f, 0.0f},
+                              {5.9f, 3.1f}};
+
+// Distance of point p from the line through the ray.
+float distanceToLine(const Ray& r, const Vec3& p) {
+    return glm::length(glm::cross(p - r.origin, r.dir)) / glm::length(r.dir);
+}
+
+// Depth of p in front of the camera: its distance from the lens plane along -w.
+float depthOf(const CameraFrame& f, const Vec3& p) { return glm::dot(p - f.e, -f.w); }
+
+void expectSameRay(const Ray& a, const Ray& b) {
+    EXPECT_EQ(a.origin, b.origin);
+    EXPECT_EQ(a.dir, b.dir);
+    EXPECT_EQ(a.tnear, b.tnear);
+    EXPECT_EQ(a.tfar, b.tfar);
+}
+
+TEST(ThinLens, ZeroApertureIsThePinholeBitForBit) {
+    const CameraFrame f = obliqueFrame();
+    const ImageWindow win{-1.0f, 1.5f, -0.75f, 1.0f};
+    for (Projection projection : {Projection::Perspective, Projection::Orthographic}) {
+        const Camera plain(f, projection, win, 2.5f, 6, 4);
+        const Camera defaulted(f, projection, win, 2.5f, 6, 4, ThinLens{});
+        const Camera refocused(f, projection, win, 2.5f, 6, 4, ThinLens{0.0f, 7.0f});
+        EXPECT_EQ(plain.apertureRadius(), 0.0f);
+        EXPECT_EQ(plain.focusDistance(), 2.5f);
+        for (const Vec2 p : kRasterPoints) {
+            const Ray pinhole = plain.generateRay(p.x, p.y);
+            expectSameRay(defaulted.generateRay(p.x, p.y), pinhole);
+            expectSameRay(refocused.generateRay(p.x, p.y), pinhole);
+            for (const Vec2 lens : lensSamples()) {
+                expectSameRay(plain.generateRay(p.x, p.y, lens), pinhole);
+                expectSameRay(refocused.generateRay(p.x, p.y, lens), pinhole);
+            }
+        }
+    }
+}
+
+TEST(ThinLens, PerspectiveRaysOfARasterPointConvergeOnTheFocusPlane) {
+    const CameraFrame f = obliqueFrame();
+    const float d = 1.5f, focus = 4.0f, radius = 0.3f;
+    const Camera cam(f, Projection::Perspective, ImageWindow{-1.0f, 1.5f, -0.75f, 1.0f}, d, 6, 4,
+                     ThinLens{radius, focus});
+    EXPECT_EQ(cam.apertureRadius(), radius);
+    EXPECT_EQ(cam.focusDistance(), focus);
+    for (const Vec2 p : kRasterPoints) {
+        // Where the pinhole ray of (x, y) meets the focus plane.
+        const Ray pinhole = cam.generateRay(p.x, p.y);
+        const float tFocus = (focus - depthOf(f, pinhole.origin)) / glm::dot(pinhole.dir, -f.w);
+        const Vec3 inFocus = pinhole.at(tFocus);
+        ASSERT_NEAR(depthOf(f, inFocus), focus, 1e-4f);
+        for (const Vec2 lens : lensSamples()) {
+            const Ray r = cam.generateRay(p.x, p.y, lens);
+            EXPECT_NEAR(glm::length(r.dir), 1.0f, kTol);
+            EXPECT_EQ(r.tnear, 0.0f);
+            EXPECT_TRUE(std::isinf(r.tfar));
+            // Every ray passes through the in-focus point, in front of its origin ...
+            EXPECT_LT(distanceToLine(r, inFocus), 1e-5f);
+            EXPECT_GT(glm::dot(inFocus - r.origin, r.dir), 0.0f);
+            // ... and starts on the image plane, as the pinhole ray does.
+            EXPECT_NEAR(depthOf(f, r.origin), d, 1e-5f);
+        }
+    }
+}
+
+TEST(ThinLens, LensPointsAreTheConcentricDiskSamples) {
+    const CameraFrame f = obliqueFrame();
+    const float radius = 0.25f;
+    const Camera cam(f, Projection::Perspective, ImageWindow{}, 1.0f, 6, 4,
+                     ThinLens{radius, 3.0f});
+    float largest = 0.0f;
+    for (const Vec2 p : kRasterPoints) {
+        for (const Vec2 lens : lensSamples()) {
+            // Follow the ray back to the lens plane (depth 0).
+            const Ray r = cam.generateRay(p.x, p.y, lens);
+            const float t = -depthOf(f, r.origin) / glm::dot(r.dir, -f.w);
+            const Vec3 onLens = r.at(t) - f.e;
+            EXPECT_NEAR(glm::dot(onLens, f.w), 0.0f, 1e-5f);
+            EXPECT_LE(glm::length(onLens), radius * (1.0f + 1e-5f));
+            const Vec2 disk = radius * sampleConcentricDisk(lens);
+            expectNear(onLens, disk.x * f.u + disk.y * f.v);
+            largest = std::max(largest, glm::length(onLens));
+        }
+    }
+    EXPECT_GT(largest, 0.99f * radius);  // the corners of [0, 1)^2 reach the rim
+}
+
+TEST(ThinLens, DefaultFocusIsTheFocalDistanceWhereAllRaysOfAPointStart) {
+    const CameraFrame f = obliqueFrame();
+    const float d = 2.0f;
+    const Camera cam(f, Projection::Perspective, ImageWindow{}, d, 6, 4,
+                     ThinLens{0.5f, std::nullopt});
+    EXPECT_EQ(cam.focusDistance(), d);
+    for (const Vec2 p : kRasterPoints) {
+        const Ray pinhole = cam.generateRay(p.x, p.y);
+        for (const Vec2 lens : lensSamples())
+            expectNear(cam.generateRay(p.x, p.y, lens).origin, pinhole.origin);
+    }
+}
+
+TEST(ThinLens, CircleOfConfusionGrowsAwayFromTheFocusPlane) {
+    // At depth z the rays from the rim of a lens of radius R focused at depth f
+    // are R |z - f| / f from the pinhole ray (docs/camera.md, "Thin lens").
+    const CameraFrame f = CameraFrame::lookAt(Vec3(0, 0, 5), Vec3(0), Vec3(0, 1, 0));
+    const float radius = 0.2f, focus = 5.0f;
+    const Camera cam(f, Projection::Perspective, ImageWindow{}, 1.0f, 6, 4,
+                     ThinLens{radius, focus});
+    const Ray pinhole = cam.generateRay(2.5f, 1.5f);
+    const Vec2 rim(1.0f - 1e-7f, 0.5f);  // the concentric map sends it to (1, 0)
+    const Ray r = cam.generateRay(2.5f, 1.5f, rim);
+    for (float z : {2.0f, 4.0f, 5.0f, 8.0f, 20.0f}) {
+        const auto atDepth = [&](const Ray& ray) {
+            return ray.at((z - depthOf(f, ray.origin)) / glm::dot(ray.dir, -f.w));
+        };
+        const float blur = glm::length(atDepth(r) - atDepth(pinhole));
+        EXPECT_NEAR(blur, radius * std::abs(z - focus) / focus, 1e-4f) << "depth " << z;
+    }
+}
+
+TEST(ThinLens, OrthographicLensIsCentredOnEachPinholeOrigin) {
+    const CameraFrame f = obliqueFrame();
+    const float radius = 0.2f, focus = 3.0f;
+    const Camera cam(f, Projection::Orthographic, ImageWindow{-2.0f, 3.0f, -1.5f, 0.5f}, 1.0f, 6,
+                     4, ThinLens{radius, focus});
+    for (const Vec2 p : kRasterPoints) {
+        const Ray pinhole = cam.generateRay(p.x, p.y);
+        const Vec3 inFocus = pinhole.origin - focus * f.w;
+        for (const Vec2 lens : lensSamples()) {
+            const Ray r = cam.generateRay(p.x, p.y, lens);
+            const Vec3 offset = r.origin - pinhole.origin;
+            EXPECT_NEAR(glm::dot(offset, f.w), 0.0f, 1e-5f);  // still on the plane through e
+            EXPECT_LE(glm::length(offset), radius * (1.0f + 1e-5f));
+            const Vec2 disk = radius * sampleConcentricDisk(lens);
+            expectNear(offset, disk.x * f.u + disk.y * f.v);
+            EXPECT_NEAR(glm::length(r.dir), 1.0f, kTol);
+            EXPECT_LT(distanceToLine(r, inFocus), 1e-5f);
+            EXPECT_GT(glm::dot(inFocus - r.origin, r.dir), 0.0f);
+        }
+    }
+}
+
+TEST(ThinLens, RejectsInvalidApertureAndFocusDistance) {
+    const CameraFrame f;
+    const auto make = [&](ThinLens lens) {
+        return Camera(f, Projection::Perspective, ImageWindow{}, 1.0f, 4, 4, lens);
+    };
+    EXPECT_THROW(make(ThinLens{-0.1f, std::nullopt}), Error);
+    EXPECT_THROW(make(ThinLens{std::nanf(""), std::nullopt}), Error);
+    EXPECT_THROW(make(ThinLens{kInfinity, std::nullopt}), Error);
+    EXPECT_THROW(make(ThinLens{0.1f, 0.0f}), Error);
+    EXPECT_THROW(make(ThinLens{0.1f, -2.0f}), Error);
+    EXPECT_THROW(make(ThinLens{0.1f, kInfinity}), Error);
+    EXPECT_THROW(make(ThinLens{0.0f, std::nanf("")}), Error);
+    EXPECT_NO_THROW(make(ThinLens{0.1f, 0.5f}));  // focused in front of the image plane
+    try {
+        make(ThinLens{-1.0f, std::nullopt});
+        FAIL() << "expected strahl::Error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("aperture"), std::string::npos) << e.what();
+    }
+}
+
 TEST(TileRayGenerator, OneSampleGoesThroughPixelCentres) {
     const Camera cam(obliqueFrame(), Projection::Perspective, ImageWindow{}, 1.0f, 9, 7);
     const TileRayGenerator gen(cam, 42, 1);
-    SampleRng rng;
+    Sampler rng;
     const Ray r = gen.sampleRay(3, 5, 0, rng);
     const Ray expected = cam.generateRay(3.5f, 5.5f);
     expectNear(r.origin, expected.origin);
@@ -142,7 +324,7 @@ TEST(TileRayGenerator, OneSampleGoesThroughPixelCentres) {
 TEST(TileRayGenerator, JitterIsDeterministicAndInsideThePixel) {
     const Camera cam(CameraFrame{}, Projection::Orthographic, ImageWindow{}, 1.0f, 8, 8);
     const TileRayGenerator gen(cam, 7, 4);
-    SampleRng a, b;
+    Sampler a, b;
     for (int s = 0; s < 4; ++s) {
         const Ray r1 = gen.sampleRay(2, 6, s, a);
         const Ray r2 = gen.sampleRay(2, 6, s, b);

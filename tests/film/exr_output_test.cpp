@@ -94,6 +94,78 @@ TEST(ExrOutput, ChannelsAreBeautyThenEachAov) {
     EXPECT_EQ(image.spec.nchannels, 10);
 }
 
+// A 2x1 film with every AOV: pixel 0 has two hits on object 12 and 70001 at
+// positions (1, 2, 3) and (3, 2, 1) with radiance 1 and 3; pixel 1 one miss.
+Film everyAovFilm() {
+    std::vector<AovKind> kinds;
+    for (std::string_view name : aovNames()) kinds.push_back(*aovFromName(name));
+    Film film(2, 1, PixelRect{0, 0, 2, 1}, kinds);
+    AovSample a = hit(Vec3(0.0f, 0.0f, 1.0f), 2.0f, Color(0.5f));
+    a.position = Vec3(1.0f, 2.0f, 3.0f);
+    a.objectId = 70001;  // beyond half's range (65504): must survive as float
+    AovSample b = a;
+    b.position = Vec3(3.0f, 2.0f, 1.0f);
+    b.objectId = 12;
+    film.addSample(0, 0, Color(1.0f, 2.0f, 0.0f), a);
+    film.addSample(0, 0, Color(3.0f, 2.0f, 4.0f), b);
+    film.addSample(1, 0, Color(0.25f), AovSample{});
+    return film;
+}
+
+TEST(ExrOutput, EveryAovIsANamedLayer) {
+    const fs::path file = test::scratchDir("film-exr-every-aov") / "every.exr";
+    writeImage(everyAovFilm(), file, {}, {});
+    const ExrImage image = readExr(file);
+
+    const std::set<std::string> names(image.spec.channelnames.begin(),
+                                      image.spec.channelnames.end());
+    const std::set<std::string> expected{
+        "R",          "G",          "B",          "normal.X",   "normal.Y",   "normal.Z",
+        "depth.Z",    "albedo.R",   "albedo.G",   "albedo.B",   "position.X", "position.Y",
+        "position.Z", "objectid.X", "variance.R", "variance.G", "variance.B"};
+    EXPECT_EQ(names, expected);
+    EXPECT_EQ(image.spec.nchannels, 17);
+
+    // Values: the mean position over hits, the first sample's id, the variance
+    // of the mean (red: 1 and 3, s^2 = 2, / 2 samples = 1; green: constant).
+    EXPECT_FLOAT_EQ(image.at(0, 0, "position.X"), 2.0f);
+    EXPECT_FLOAT_EQ(image.at(0, 0, "position.Z"), 2.0f);
+    EXPECT_EQ(image.at(0, 0, "objectid.X"), 70001.0f);
+    EXPECT_FLOAT_EQ(image.at(0, 0, "variance.R"), 1.0f);
+    EXPECT_EQ(image.at(0, 0, "variance.G"), 0.0f);
+    EXPECT_FLOAT_EQ(image.at(0, 0, "variance.B"), 4.0f);
+    // The missed pixel: no position, no object, a single sample.
+    EXPECT_EQ(image.at(1, 0, "position.Y"), 0.0f);
+    EXPECT_EQ(image.at(1, 0, "objectid.X"), -1.0f);
+    EXPECT_EQ(image.at(1, 0, "variance.B"), 0.0f);
+    EXPECT_FLOAT_EQ(image.at(1, 0, "R"), 0.25f);
+}
+
+TEST(ExrOutput, ObjectIdIsFloatInAHalfFile) {
+    const fs::path file = test::scratchDir("film-exr-objectid-float") / "ids.exr";
+    writeImage(everyAovFilm(), file, {}, {});
+    const ExrImage image = readExr(file);
+
+    ASSERT_EQ(image.spec.channelformats.size(), 17u);
+    for (size_t c = 0; c < image.spec.channelnames.size(); ++c) {
+        const bool id = image.spec.channelnames[c] == "objectid.X";
+        EXPECT_EQ(image.spec.channelformats[c], id ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF)
+            << image.spec.channelnames[c];
+    }
+}
+
+TEST(ExrOutput, FloatFileHasOneFormatForAllChannels) {
+    const fs::path file = test::scratchDir("film-exr-all-float") / "float.exr";
+    OutputSettings settings;
+    settings.exrFloat = true;
+    writeImage(everyAovFilm(), file, settings, {});
+    const ExrImage image = readExr(file);
+
+    EXPECT_EQ(image.spec.format, OIIO::TypeDesc::FLOAT);
+    EXPECT_TRUE(image.spec.channelformats.empty());
+    EXPECT_EQ(image.at(0, 0, "objectid.X"), 70001.0f);
+}
+
 TEST(ExrOutput, HalfByDefaultWithTheFilmsValues) {
     const fs::path file = test::scratchDir("film-exr-half") / "half.exr";
     writeImage(allAovsFilm(), file, {}, {});

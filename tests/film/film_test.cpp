@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +33,21 @@ TEST(Film, AovNamesAndChannelCounts) {
     EXPECT_EQ(aovChannels(AovKind::Normal), 3);
     EXPECT_EQ(aovChannels(AovKind::Depth), 1);
     EXPECT_EQ(aovChannels(AovKind::Albedo), 3);
+    EXPECT_STREQ(aovName(AovKind::Position), "position");
+    EXPECT_STREQ(aovName(AovKind::ObjectId), "objectid");
+    EXPECT_STREQ(aovName(AovKind::Variance), "variance");
+    EXPECT_EQ(aovChannels(AovKind::Position), 3);
+    EXPECT_EQ(aovChannels(AovKind::ObjectId), 1);
+    EXPECT_EQ(aovChannels(AovKind::Variance), 3);
+    // aovNames() lists every kind in enum order, and aovFromName inverts it.
+    ASSERT_EQ(aovNames().size(), 6u);
+    for (size_t i = 0; i < aovNames().size(); ++i) {
+        const std::optional<AovKind> kind = aovFromName(aovNames()[i]);
+        ASSERT_TRUE(kind.has_value()) << aovNames()[i];
+        EXPECT_EQ(static_cast<size_t>(*kind), i);
+        EXPECT_EQ(aovNames()[i], aovName(*kind));
+    }
+    EXPECT_FALSE(aovFromName("objectID").has_value());
 }
 
 TEST(Film, BeautyIsTheMeanOfThePixelsSamples) {
@@ -131,6 +148,141 @@ TEST(Film, AovsAreIndependentOfTheBeautyPass) {
     film.addSample(0, 0, Color(0.0f), hitSample(Vec3(1, 0, 0), 1.0f, Color(0.5f)));
     EXPECT_FLOAT_EQ(film.resolveBeauty()[0], 2.0f);
     EXPECT_FLOAT_EQ(film.resolveAov(AovKind::Albedo)[0], 0.5f);
+}
+
+AovSample hitAt(Vec3 position, uint32_t objectId) {
+    AovSample s = hitSample(Vec3(0, 0, 1), 1.0f, Color(0.5f));
+    s.position = position;
+    s.objectId = objectId;
+    return s;
+}
+
+// The unbiased sample variance of `values`, divided by their count: the
+// variance of their mean, computed in double by the two-pass formula.
+double varianceOfMean(const std::vector<double>& values) {
+    const double n = static_cast<double>(values.size());
+    double mean = 0.0;
+    for (double v : values) mean += v;
+    mean /= n;
+    double squares = 0.0;
+    for (double v : values) squares += (v - mean) * (v - mean);
+    return squares / (n - 1.0) / n;
+}
+
+TEST(Film, VarianceIsTheVarianceOfTheBeautyMeanPerChannel) {
+    Film film(3, 1, PixelRect{0, 0, 3, 1}, {AovKind::Variance});
+    // Pixel 0: red 1, 2, 4, 8, 3; green constant 0.5; blue 0, 10, 0, 10, 0.
+    const std::vector<double> red{1, 2, 4, 8, 3}, blue{0, 10, 0, 10, 0};
+    for (size_t k = 0; k < red.size(); ++k)
+        film.addSample(0, 0,
+                       Color(static_cast<float>(red[k]), 0.5f, static_cast<float>(blue[k])),
+                       k % 2 ? kMiss : hitSample(Vec3(0, 0, 1), 1.0f, Color(0.2f)));
+    // Pixel 1: a single sample; pixel 2: none.
+    film.addSample(1, 0, Color(7.0f), kMiss);
+
+    const std::vector<float> variance = film.resolveAov(AovKind::Variance);
+    ASSERT_EQ(variance.size(), 9u);
+    EXPECT_NEAR(variance[0], varianceOfMean(red), 1e-5 * varianceOfMean(red));  // 7.3 / 5
+    EXPECT_EQ(variance[1], 0.0f);
+    EXPECT_NEAR(variance[2], varianceOfMean(blue), 1e-5 * varianceOfMean(blue));  // 30 / 5
+    for (size_t c = 3; c < 9; ++c) EXPECT_EQ(variance[c], 0.0f) << "channel " << c;
+    // The variance AOV does not change the beauty pass.
+    EXPECT_FLOAT_EQ(film.resolveBeauty()[0], 3.6f);
+}
+
+TEST(Film, VarianceIsStableForALargeMean) {
+    // 64 values 4096 + 0.125 k, k = 0 .. 15: a sample variance of 0.34 under a
+    // squared mean of 1.7e7, where the sum-of-squares formula in float gives 0.
+    Film film(1, 1, PixelRect{0, 0, 1, 1}, {AovKind::Variance});
+    std::vector<double> values;
+    for (int i = 0; i < 64; ++i) {
+        const double v = 4096.0 + 0.125 * ((i * 37) % 16);
+        values.push_back(v);
+        film.addSample(0, 0, Color(static_cast<float>(v)), kMiss);
+    }
+    const double expected = varianceOfMean(values);
+    const std::vector<float> variance = film.resolveAov(AovKind::Variance);
+    for (float v : variance) EXPECT_NEAR(v, expected, 1e-3 * expected);
+}
+
+TEST(Film, VarianceOfConstantSamplesIsExactlyZero) {
+    Film film(1, 1, PixelRect{0, 0, 1, 1}, {AovKind::Variance});
+    for (int i = 0; i < 1000; ++i) film.addSample(0, 0, Color(0.1f, 3.3f, 1e5f), kMiss);
+    for (float v : film.resolveAov(AovKind::Variance)) EXPECT_EQ(v, 0.0f);
+}
+
+TEST(Film, ObjectIdIsTheFirstSamplesIdNotAnAverage) {
+    Film film(5, 1, PixelRect{0, 0, 5, 1}, {AovKind::ObjectId});
+    // Pixel 0: the first sample hits object 7; later ones hit 3 or miss.
+    film.addSample(0, 0, Color(0.0f), hitAt(Vec3(0.0f), 7));
+    film.addSample(0, 0, Color(0.0f), hitAt(Vec3(0.0f), 3));
+    film.addSample(0, 0, Color(0.0f), kMiss);
+    // Pixel 1: the first sample misses, so the pixel is -1 whatever follows.
+    film.addSample(1, 0, Color(0.0f), kMiss);
+    film.addSample(1, 0, Color(0.0f), hitAt(Vec3(0.0f), 5));
+    // Pixel 2: object 0 is an id like any other. Pixel 3: no samples.
+    film.addSample(2, 0, Color(0.0f), hitAt(Vec3(0.0f), 0));
+    // Pixel 4: 2^24, the largest id a float still tells from its neighbours.
+    film.addSample(4, 0, Color(0.0f), hitAt(Vec3(0.0f), 16777216u));
+
+    const std::vector<float> id = film.resolveAov(AovKind::ObjectId);
+    ASSERT_EQ(id.size(), 5u);
+    EXPECT_EQ(id[0], 7.0f);
+    EXPECT_EQ(id[1], -1.0f);
+    EXPECT_EQ(id[2], 0.0f);
+    EXPECT_EQ(id[3], -1.0f);
+    EXPECT_EQ(id[4], 16777216.0f);
+}
+
+TEST(Film, PositionIsTheMeanOverHitsAndZeroWithout) {
+    Film film(3, 1, PixelRect{0, 0, 3, 1}, {AovKind::Position});
+    film.addSample(0, 0, Color(0.0f), hitAt(Vec3(1.0f, 2.0f, -3.0f), 1));
+    film.addSample(0, 0, Color(0.0f), kMiss);  // does not pull the mean towards 0
+    film.addSample(0, 0, Color(0.0f), hitAt(Vec3(3.0f, 2.0f, -1.0f), 1));
+    film.addSample(1, 0, Color(1.0f), kMiss);
+
+    const std::vector<float> position = film.resolveAov(AovKind::Position);
+    ASSERT_EQ(position.size(), 9u);
+    EXPECT_FLOAT_EQ(position[0], 2.0f);
+    EXPECT_FLOAT_EQ(position[1], 2.0f);
+    EXPECT_FLOAT_EQ(position[2], -2.0f);
+    for (size_t c = 3; c < 9; ++c) EXPECT_EQ(position[c], 0.0f) << "channel " << c;
+}
+
+TEST(Film, EveryAovAloneIsFiniteForHitsMissesAndEmptyPixels) {
+    for (std::string_view name : aovNames()) {
+        const AovKind kind = *aovFromName(name);
+        Film film(3, 1, PixelRect{0, 0, 3, 1}, {kind});
+        film.addSample(0, 0, Color(1.0f), hitAt(Vec3(1.0f), 4));
+        film.addSample(0, 0, Color(2.0f), kMiss);
+        film.addSample(1, 0, Color(3.0f), kMiss);
+        const std::vector<float> values = film.resolveAov(kind);
+        ASSERT_EQ(values.size(), 3u * static_cast<size_t>(aovChannels(kind))) << name;
+        for (float v : values) {
+            EXPECT_FALSE(std::isnan(v)) << name;
+            // Only depth has a non-finite value: +inf where nothing was hit.
+            EXPECT_TRUE(kind == AovKind::Depth || std::isfinite(v)) << name;
+        }
+    }
+}
+
+TEST(Film, AllAovsTogetherKeepTheirOwnSemantics) {
+    Film film(1, 1, PixelRect{0, 0, 1, 1},
+              {AovKind::Variance, AovKind::ObjectId, AovKind::Position, AovKind::Depth,
+               AovKind::Normal, AovKind::Albedo});
+    AovSample first = hitAt(Vec3(0.0f, 0.0f, 4.0f), 9);
+    first.depth = 2.0f;
+    AovSample second = hitAt(Vec3(0.0f, 0.0f, 2.0f), 11);
+    second.depth = 4.0f;
+    film.addSample(0, 0, Color(1.0f), first);
+    film.addSample(0, 0, Color(3.0f), second);
+    film.addSample(0, 0, Color(2.0f), kMiss);
+    EXPECT_FLOAT_EQ(film.resolveAov(AovKind::Depth)[0], 3.0f);
+    EXPECT_FLOAT_EQ(film.resolveAov(AovKind::Position)[2], 3.0f);
+    EXPECT_EQ(film.resolveAov(AovKind::ObjectId)[0], 9.0f);
+    EXPECT_FLOAT_EQ(film.resolveAov(AovKind::Normal)[2], 2.0f / 3.0f);
+    EXPECT_FLOAT_EQ(film.resolveAov(AovKind::Variance)[0], 1.0f / 3.0f);  // s^2 = 1, n = 3
+    EXPECT_FLOAT_EQ(film.resolveBeauty()[0], 2.0f);
 }
 
 TEST(Film, ResolvingAnAovThatWasNotRequestedIsAnError) {

@@ -12,6 +12,23 @@
 // Perspective:  direction -d W + u U + v V, normalised; the origin is moved onto
 //               the image plane, e - d W + u U + v V, so t is the Euclidean
 //               distance from the image plane along the ray.
+//
+// Thin lens (depth of field, docs/camera.md "Thin lens"): a lens of radius R in
+// the plane through e perpendicular to w, focused on the plane at distance f
+// along -w. A lens sample maps to the disk point (dx, dy) (concentric map), the
+// lens point is L = R (dx U + dy V), and s = -d W + u U + v V as above:
+//   Perspective:  direction (f/d) s - L, normalised: through the point where the
+//                 pinhole ray meets the focus plane. The origin is where this
+//                 ray crosses the image plane (distance d along -w), e + s +
+//                 (1 - d/f) L, so the same space is clipped as with the pinhole
+//                 and t is again the distance from the image plane.
+//   Orthographic: the lens is centred on each pinhole origin o = e + u U + v V
+//                 (pbrt's orthographic lens): origin o + L, direction
+//                 -f W - L, normalised, through the focus point o - f W.
+// R = 0 (the default) is the pinhole camera: every ray is bit-identical to the
+// one generateRay(x, y) gives, whatever the lens sample.
+
+#include <optional>
 
 #include "strahl/core/math.h"
 #include "strahl/core/ray.h"
@@ -35,22 +52,38 @@ struct ImageWindow {
     float l = -1.0f, r = 1.0f, b = -1.0f, t = 1.0f;
 };
 
+// The lens of a depth-of-field camera (see the header comment).
+struct ThinLens {
+    float apertureRadius = 0.0f;         // R in world units, >= 0; 0 is a pinhole
+    std::optional<float> focusDistance;  // f > 0 along -w from e; none: the focal distance d
+};
+
 class Camera {
 public:
+    // Throws strahl::Error for a non-positive size, a window without l < 0 < r and
+    // b < 0 < t, a focal or focus distance that is not positive and finite, or a
+    // negative or non-finite aperture radius.
     Camera(const CameraFrame& frame, Projection projection, ImageWindow window,
-           float focalDistance, int nx, int ny);
+           float focalDistance, int nx, int ny, const ThinLens& lens = {});
 
     // The window of a perspective camera with vertical field of view fovY
     // (radians): t = d tan(fovY/2), b = -t, r = t nx/ny, l = -r.
     static ImageWindow windowFromFov(float fovY, float focalDistance, int nx, int ny);
 
-    // The ray through continuous raster position (x, y), see the header comment.
+    // The ray through continuous raster position (x, y) and the centre of the lens:
+    // the pinhole ray of the header comment, whatever the aperture.
     Ray generateRay(float x, float y) const;
+    // The thin-lens ray through raster position (x, y) and the lens point that
+    // lensSample in [0, 1)^2 maps to; identical to generateRay(x, y) when the
+    // aperture radius is 0.
+    Ray generateRay(float x, float y, const Vec2& lensSample) const;
 
     const CameraFrame& frame() const { return frame_; }
     Projection projection() const { return projection_; }
     const ImageWindow& window() const { return window_; }
     float focalDistance() const { return d_; }
+    float apertureRadius() const { return lensRadius_; }
+    float focusDistance() const { return focus_; }  // resolved: d if the lens gave none
     int width() const { return nx_; }
     int height() const { return ny_; }
     Mat4 worldToCamera() const;  // rows u, v, w; camera looks down -z
@@ -62,6 +95,8 @@ private:
     float d_;
     int nx_, ny_;
     float du_, dv_;  // (r - l) / nx and (b - t) / ny, the window's extent per pixel
+    float lensRadius_;
+    float focus_;
 };
 
 }  // namespace strahl

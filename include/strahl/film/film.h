@@ -1,8 +1,10 @@
 #pragma once
 // Film: float accumulation of radiance and AOVs over a pixel rectangle of the
-// full image (the crop window), with a box pixel filter (the mean of the
-// samples that landed in the pixel). Each pixel is written by exactly one tile,
-// so no locking is needed and the summation order is fixed (deterministic).
+// full image (the crop window). A pixel's value is the plain mean of the samples
+// credited to it: with filter importance sampling (core/filter.h) every sample
+// has weight 1, even one whose raster position lies outside its pixel. Each
+// pixel is written by exactly one tile, in sample order, so no locking is needed
+// and the summation order is fixed (deterministic).
 
 #include <cstdint>
 #include <optional>
@@ -17,23 +19,33 @@
 namespace strahl {
 
 // Arbitrary output variables written next to the beauty pass.
-enum class AovKind {  // values 0, 1, 2 in the order of aovNames()
-    Normal,  // world-space shading normal of the first hit, mean over samples (0 for misses)
-    Depth,   // ray distance to the first hit, mean over the samples that hit; +inf if none did
-    Albedo,  // diffuse reflectance of the first hit, mean over samples (0 for misses)
+// Unless stated, "samples" are those credited to the pixel.
+enum class AovKind {  // values 0 .. 5 in the order of aovNames()
+    Normal,    // world-space shading normal of the first hit, mean over samples (0 for misses)
+    Depth,     // ray distance to the first hit, mean over the samples that hit; +inf if none did
+    Albedo,    // diffuse reflectance of the first hit, mean over samples (0 for misses)
+    Position,  // world-space first-hit point, mean over the samples that hit; 0 if none did
+    ObjectId,  // AovSample::objectId of the pixel's first sample (not averaged); -1 if that
+               // sample missed or the pixel has no samples
+    Variance,  // per channel, the variance of the beauty mean: s^2 / n with s^2 the
+               // sample variance of the n radiance values (Welford); 0 for n < 2
 };
 
-const char* aovName(AovKind kind);  // "normal", "depth", "albedo"
+// "normal", "depth", "albedo", "position", "objectid", "variance"
+const char* aovName(AovKind kind);
 std::span<const std::string_view> aovNames();  // every AOV's name, in enum order
 std::optional<AovKind> aovFromName(std::string_view name);
-int aovChannels(AovKind kind);      // 3, 1, 3
+int aovChannels(AovKind kind);      // 3, 1, 3, 3, 1, 3
 
-// First-hit values of one camera sample, for the AOVs.
+// First-hit values of one camera sample, for the AOVs. Only `hit` is read for a
+// miss; the radiance for the variance AOV comes from addSample.
 struct AovSample {
     bool hit = false;
     Vec3 normal{0.0f};
     float depth = 0.0f;
     Color albedo{0.0f};
+    Vec3 position{0.0f};    // world space
+    uint32_t objectId = 0;  // written as a float: exact below 2^24
 };
 
 class Film {
@@ -46,7 +58,9 @@ public:
     const PixelRect& crop() const { return crop_; }
     const std::vector<AovKind>& aovs() const { return aovs_; }
 
-    // (x, y) in full-image pixel coordinates, inside the crop.
+    // (x, y) in full-image pixel coordinates, inside the crop: the pixel the
+    // sample belongs to, not necessarily the one its raster position lies in.
+    // The first call for a pixel is its first sample (the objectid AOV).
     void addSample(int x, int y, const Color& radiance, const AovSample& aov);
 
     // Resolved crop-sized images, row-major from the top row, interleaved channels.
@@ -61,10 +75,14 @@ private:
     std::vector<AovKind> aovs_;
     std::vector<Color> radiance_;
     std::vector<uint32_t> samples_;
-    std::vector<uint32_t> hits_;
+    std::vector<uint32_t> hits_;  // samples that hit: for depth and position
     std::vector<Vec3> normal_;
     std::vector<float> depth_;
     std::vector<Color> albedo_;
+    std::vector<Vec3> position_;
+    std::vector<float> objectId_;
+    std::vector<Color> mean_;  // Welford's running mean of the radiance
+    std::vector<Color> m2_;    // Welford's sum of squared deviations from it
 };
 
 }  // namespace strahl

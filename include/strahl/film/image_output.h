@@ -1,8 +1,10 @@
 #pragma once
 // Writing a Film to disk through OpenImageIO; the format follows the extension.
 //   .exr            scene-linear RGB (half by default, float on request), AOVs as
-//                   named channels ("normal.X", "depth.Z", "albedo.R", ...) and
-//                   metadata (render time, spp, camera, strahl version).
+//                   named channels ("normal.X", "depth.Z", "albedo.R",
+//                   "position.X", "objectid.X", "variance.R", ...; objectid is
+//                   always 32-bit float, so ids stay exact) and metadata
+//                   (render time, spp, camera, strahl version).
 //   .png .jpg .jpeg .tif .tiff
 //                   display-referred: the OpenColorIO display/view transform is
 //                   applied (see display_transform.h), then quantised.
