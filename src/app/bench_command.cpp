@@ -2,6 +2,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -11,7 +13,9 @@
 #include "strahl/benchmark/bench_report.h"
 #include "strahl/benchmark/bench_scene.h"
 #include "strahl/benchmark/bench_suite.h"
+#include "strahl/benchmark/path_bench.h"
 #include "strahl/core/error.h"
+#include "strahl/meshio/mesh_file.h"
 #include "strahl/scene/scene_desc.h"
 
 namespace strahl::app {
@@ -39,6 +43,22 @@ void checkOutput(const char* option, const std::string& file,
     } catch (const Error& e) {
         fail(option, " ", e.what());
     }
+}
+
+// The repository's scenes folder: --scenes, else ./scenes when it holds the
+// Cornell box (run from the repository root), else the scenes folder of the
+// source tree the executable was built in (<source>/<build>/bin/strahl).
+fs::path scenesFolder(const std::string& given) {
+    if (!given.empty()) return given;
+    const fs::path here = "scenes";
+    std::error_code ec;
+    if (fs::is_regular_file(here / "default.json", ec)) return here;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    if (!ec) {
+        const fs::path source = exe.parent_path().parent_path().parent_path() / "scenes";
+        if (fs::is_regular_file(source / "default.json", ec)) return source;
+    }
+    return here;  // pathBenchFiles names it in its error
 }
 
 }  // namespace
@@ -70,6 +90,15 @@ CLI::App* addBenchCommand(CLI::App& app, BenchCommandOptions& o) {
     bench->add_flag("--no-raster", o.noRaster, "Do not time the rasterizer");
     bench->add_option("--out", o.out, "Write the results as .csv or .json");
     bench->add_option("--plot", o.plot, "Write the log-log plot of cost per ray as .svg");
+    bench->add_option("--path", o.path,
+                      "Path-trace the repository's scenes, comma-separated (cornell, sponza), "
+                      "or none. Default cornell,sponza");
+    // 65536: the scene format's own limit on render.spp.
+    bench->add_option("--path-spp", o.pathSpp, "Samples per pixel of the path scenes (default 16)")
+        ->check(CLI::Range(1, 65536));
+    bench->add_option("--scenes", o.scenes,
+                      "The repository's scenes folder (default ./scenes, else the source tree "
+                      "of the executable)");
     bench->add_flag("-q,--quiet", o.quiet, "No progress lines");
     return bench;
 }
@@ -96,7 +125,17 @@ int runBench(const BenchCommandOptions& o) {
         models = splitList(o.models);
     }
     const std::vector<BenchSceneSpec> scenes = benchScenes(ladder, models, data);
-    if (scenes.empty()) fail("bench: nothing to measure (--ladder none and --models none)");
+    PathBenchOptions pathOptions;
+    pathOptions.scenes = o.path == "none" ? std::vector<std::string>{} : splitList(o.path);
+    pathOptions.scenesDir = scenesFolder(o.scenes);
+    pathOptions.resolution = o.resolution;
+    pathOptions.spp = o.pathSpp;
+    pathOptions.threads = o.threads;
+    pathBenchFiles(pathOptions);  // unknown names and missing scene files fail here
+    if (scenes.empty() && pathOptions.scenes.empty())
+        fail("bench: nothing to measure (--ladder none, --models none and --path none)");
+    if (scenes.empty() && !o.plot.empty())
+        fail("--plot: the plot shows the ladder and the models: there are none to plot");
     // The output files are checked before hours of measuring, not after.
     checkOutput("--out", o.out, &checkBenchResultsFile);
     checkOutput("--plot", o.plot, &checkBenchPlotFile);
@@ -108,19 +147,37 @@ int runBench(const BenchCommandOptions& o) {
     options.naiveBudget = o.naiveBudget;
     options.raster = !o.noRaster;
 
+    const auto status = [&](const std::string& what) {
+        if (!o.quiet) std::fprintf(stderr, "bench: %s\n", what.c_str());
+    };
+    if (o.quiet) setMeshWarningHandler([](const std::string&) {});  // as `strahl render -q`
     std::vector<BenchRow> rows;
-    for (const BenchSceneSpec& spec : scenes) {
-        rows.push_back(runBenchScene(spec, options, [&](const std::string& what) {
-            if (!o.quiet) std::fprintf(stderr, "bench: %s\n", what.c_str());
-        }));
-    }
+    for (const BenchSceneSpec& spec : scenes) rows.push_back(runBenchScene(spec, options, status));
+    const std::vector<PathBenchRow> pathRows = runPathBench(pathOptions, status);
+
     const BenchFits fits = fitBench(rows);
-    std::printf("strahl bench: %dx%d camera rays per scene, %d threads (0 = all), best of %d\n",
-                o.resolution, o.resolution, o.threads, o.repeats);
-    printBenchTable(stdout, rows, fits);
+    if (!rows.empty()) {
+        std::printf("strahl bench: %dx%d camera rays per scene, %d threads (0 = all), best of %d\n",
+                    o.resolution, o.resolution, o.threads, o.repeats);
+        printBenchTable(stdout, rows, fits);
+    }
+    if (!pathRows.empty()) {
+        if (!rows.empty()) std::printf("\n");
+        std::printf("strahl bench --path: %dx%d, %d spp, max depth %d, %d threads (0 = all), "
+                    "one render per scene\n",
+                    pathOptions.resolution, pathOptions.resolution, pathOptions.spp,
+                    pathOptions.maxDepth, o.threads);
+        printPathBenchTable(stdout, pathRows);
+    }
     if (!o.out.empty()) {
-        writeBenchResults(o.out, rows, fits, options);
+        writeBenchResults(o.out, rows, fits, options, pathRows, pathOptions);
         std::printf("wrote %s\n", o.out.c_str());
+        std::string ext = fs::path(o.out).extension().string();
+        std::transform(ext.begin(), ext.end(), ext.begin(),
+                       [](unsigned char c) { return char(std::tolower(c)); });
+        if (!pathRows.empty() && ext != ".json")
+            std::printf("note: the path rows are not in the CSV (other columns): use --out "
+                        "FILE.json\n");
     }
     if (!o.plot.empty()) {
         writeBenchPlot(o.plot, rows, fits);

@@ -22,6 +22,10 @@ struct BenchCommandOptions {
     bool noRaster = false;
     std::string out, plot;
     bool quiet = false;
+    // Path tracing (path_bench.h): comma-separated scene names, or "none".
+    std::string path = "cornell,sponza";
+    int pathSpp = 16;
+    std::string scenes;  // "" = ./scenes, else the source tree of the executable
 };
 
 // Adds the `bench` subcommand and its options to `app`.

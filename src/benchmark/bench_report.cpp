@@ -11,6 +11,7 @@
 #include <sstream>
 #include <vector>
 
+#include "strahl/benchmark/path_bench.h"
 #include "strahl/core/error.h"
 
 namespace strahl {
@@ -152,8 +153,16 @@ void printBenchTable(std::FILE* out, std::span<const BenchRow> rows, const Bench
 
 void writeBenchResults(const fs::path& file, std::span<const BenchRow> rows, const BenchFits& fits,
                        const BenchOptions& options) {
+    writeBenchResults(file, rows, fits, options, {}, PathBenchOptions{});
+}
+
+void writeBenchResults(const fs::path& file, std::span<const BenchRow> rows, const BenchFits& fits,
+                       const BenchOptions& options, std::span<const PathBenchRow> pathRows,
+                       const PathBenchOptions& pathOptions) {
     requireResultsExtension(file);
     if (lowerExtension(file) == ".csv") {
+        // One table of ladder and model rows; the path rows have other
+        // columns and are written to JSON only (docs/benchmarks.md).
         std::ostringstream csv;
         csv << "scene,generated,triangles,vertices,load_s,input_mb,build_s,build_mtris_per_s,"
                "mesh_mib,bvh_mib,primary_rays,primary_hits,packet_width,packet_mrays,single_mrays,"
@@ -211,6 +220,48 @@ void writeBenchResults(const fs::path& file, std::span<const BenchRow> rows, con
                  {"embree_log_b_ns", fits.embreeLog.b},
                  {"embree_log_r2", fits.embreeLog.r2},
                  {"ladder_points", fits.naive.points}};
+    if (!pathRows.empty()) {
+        j["path_options"] = {{"resolution", pathOptions.resolution},
+                             {"spp", pathOptions.spp},
+                             {"max_depth", pathOptions.maxDepth},
+                             {"threads", pathOptions.threads}};
+        j["path"] = nlohmann::ordered_json::array();
+        for (const PathBenchRow& r : pathRows) {
+            if (r.skipped) {
+                j["path"].push_back({{"scene", r.scene},
+                                     {"file", r.file.string()},
+                                     {"skipped", true},
+                                     {"reason", r.skipReason}});
+                continue;
+            }
+            j["path"].push_back({{"scene", r.scene},
+                                 {"file", r.file.string()},
+                                 {"skipped", false},
+                                 {"width", r.width},
+                                 {"height", r.height},
+                                 {"spp", r.spp},
+                                 {"max_depth", r.maxDepth},
+                                 {"triangles", r.triangles},
+                                 {"load_s", r.loadSeconds},
+                                 {"bvh_s", r.bvhSeconds},
+                                 {"setup_s", r.setupSeconds},
+                                 {"first_tile_s", r.firstTileSeconds},
+                                 {"first_pixel_s", r.firstPixelSeconds()},
+                                 {"render_s", r.renderSeconds},
+                                 {"samples_per_s", r.samplesPerSecond()},
+                                 {"mrays_per_s", r.mraysPerSecond()},
+                                 {"rays_per_sample", r.raysPerSample()},
+                                 {"camera_rays", r.cameraRays},
+                                 {"shadow_rays", r.shadowRays},
+                                 {"bounce_rays", r.bounceRays},
+                                 {"packet_width", r.packetWidth}});
+        }
+        if (const auto ratio = pathCostRatio(pathRows, "sponza", "cornell"))
+            j["path_cost_ratio"] = {{"scene", "sponza"},
+                                    {"base", "cornell"},
+                                    {"per_sample", ratio->perSample},
+                                    {"per_ray", ratio->perRay}};
+    }
     writeTextAtomically(file, j.dump(2) + "\n");
 }
 

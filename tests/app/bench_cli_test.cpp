@@ -19,7 +19,7 @@ using test::contains;
 using test::RunResult;
 using test::runStrahl;
 
-const std::string kSmall = "bench --ladder 1e2,1e3 --models none --resolution 32 --repeats 1 -q ";
+const std::string kSmall = "bench --ladder 1e2,1e3 --models none --resolution 32 --repeats 1 --path none -q ";
 
 TEST(BenchCli, ASmallRunPrintsTheTableAndWritesItsFiles) {
     const fs::path dir = test::scratchDir("bench-cli");
@@ -47,7 +47,7 @@ TEST(BenchCli, BadInputIsOneClearError) {
         {"bench --ladder 1e12 --models none", "strahl: error: bench: a ladder size of 1e12 "
                                               "triangles is outside [100, 100000000]"},
         {"bench --ladder many --models none", "strahl: error: bench: 'many' is not a triangle count"},
-        {"bench --ladder none --models none", "strahl: error: bench: nothing to measure"},
+        {"bench --ladder none --models none --path none", "strahl: error: bench: nothing to measure"},
         {kSmall + "--out " + (dir / "missing/r.csv").string(),
          "strahl: error: --out " + (dir / "missing/r.csv").string() + ": the folder "},
         {kSmall + "--plot " + (dir / "cost.png").string(), "give a .svg file"},
