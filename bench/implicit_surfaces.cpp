@@ -43,7 +43,7 @@
 #include "bench_mesh.h"
 #include "strahl/accel/embree_spheres.h"
 #include "strahl/camera/tile_rays.h"
-#include "strahl/core/rng.h"
+#include "strahl/core/sampler.h"
 #include "strahl/geometry/formula.h"
 #include "strahl/geometry/implicit_builtins.h"
 #include "strahl/geometry/implicit_formula.h"
@@ -106,7 +106,7 @@ CameraRays makeCameraRays(const Camera& camera, int packetWidth) {
         const PixelRect& t = tiles[i];
         for (int y = t.y0; y < t.y1; ++y)
             for (int x = t.x0; x < t.x1; ++x) {
-                SampleRng rng;
+                Sampler rng;
                 rays.single[i].push_back(gen.sampleRay(x, y, 0, rng));
             }
     }

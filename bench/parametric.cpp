@@ -129,7 +129,7 @@ CameraRays makeCameraRays(const Camera& camera) {
         std::vector<PixelRay>& single = rays.single.emplace_back();
         for (int y = tile.y0; y < tile.y1; ++y)
             for (int x = tile.x0; x < tile.x1; ++x) {
-                SampleRng rng;
+                Sampler rng;
                 single.push_back({gen.sampleRay(x, y, 0, rng), y * kSize + x});
             }
     }

@@ -46,10 +46,11 @@ Fixture& fixture(const std::string& meshPath = {}) {
         g.name = "bench";
         g.mesh = benchmarkMesh(meshPath, kMinTriangles, fx.meshDescription);
         g.materialOfSlot = {0};
-        fx.world.materials.push_back(Material{"default", Color(0.8f), Color(0.0f)});
+        fx.world.materials.push_back(Material::diffuse("default", Color(0.8f)));
         fx.world.shapes.push_back(std::move(g));
         const TriangleMesh* meshes[] = {&fx.world.shapes[0].mesh};
         fx.world.accel = buildEmbreeAccel(meshes, {});
+        fx.world.prepareLights();
         fx.camera = frontCamera(fx.world.bounds(), kSize);
         fx.width = resolvePacketWidth(PacketMode::Auto, *fx.world.accel);
         return fx;

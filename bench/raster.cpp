@@ -88,7 +88,7 @@ void printAgreement(const Fixture& f) {
     size_t same = 0;
     for (int y = 0; y < kSize; ++y)
         for (int x = 0; x < kSize; ++x) {
-            SampleRng rng;
+            Sampler rng;
             const Hit traced = f.world.accel->intersect(rays.sampleRay(x, y, 0, rng));
             const Hit& r = raster[size_t(y) * kSize + size_t(x)];
             same += traced.geomID == r.geomID && traced.primID == r.primID;

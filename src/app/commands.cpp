@@ -23,6 +23,7 @@ void applyOverrides(const Options& o, SceneDesc& desc) {
     if (o.height) desc.film.height = *o.height;
     if (o.spp) desc.render.spp = *o.spp;
     if (o.integrator) desc.render.integrator = *o.integrator;
+    if (o.maxDepth) desc.render.maxDepth = *o.maxDepth;
     if (o.seed) desc.render.seed = *o.seed;
     if (o.exrFloat) desc.film.exrFloat = true;
     if (!o.aovs.empty()) {
@@ -91,7 +92,8 @@ int runRender(const Options& o) {
     if (!raster) progress.end();  // of the BVH phase
 
     const Camera camera = buildCamera(desc.camera, desc.film.width, desc.film.height);
-    const auto integrator = makeIntegrator(desc.render.integrator, world);
+    const auto integrator = makeIntegrator(desc.render.integrator, world,
+                                           buildIntegratorOptions(desc, camera));
     Film film(desc.film.width, desc.film.height, crop, desc.film.aovs);
 
     RenderStats stats;
@@ -113,6 +115,7 @@ int runRender(const Options& o) {
         options.tileSize = o.tileSize;
         options.spp = desc.render.spp;
         options.seed = desc.render.seed;
+        options.filter = buildPixelFilter(desc.film);
         options.packets = o.packets;
         options.progress = &progress;
         stats = renderImage(world, camera, *integrator, film, options);
@@ -147,13 +150,16 @@ int runRender(const Options& o) {
                      humanCount(double(rasterStats.coveredPixels)).c_str(),
                      desc.render.integrator.c_str());
     } else if (!o.quiet) {
-        const double rays = static_cast<double>(stats.cameraRays + stats.shadowRays);
+        const double rays = static_cast<double>(stats.totalRays());
         std::fprintf(stderr,
-                     "summary: load %.2f s, bvh %.2f s, render %.2f s | %s rays (%s camera, %s "
-                     "shadow), %.1f Mrays/s | %s, %d spp, %s\n",
+                     "summary: load %.2f s, bvh %.2f s, render %.2f s, first pixel after %.2f s "
+                     "| %s rays (%s camera, %s shadow, %s bounce), %.1f Mrays/s | %s, %d spp, "
+                     "%s\n",
                      timings.loadSeconds, timings.bvhSeconds, stats.seconds,
+                     timings.loadSeconds + timings.bvhSeconds + stats.firstTileSeconds,
                      humanCount(rays).c_str(), humanCount(double(stats.cameraRays)).c_str(),
                      humanCount(double(stats.shadowRays)).c_str(),
+                     humanCount(double(stats.bounceRays)).c_str(),
                      stats.seconds > 0 ? rays / stats.seconds / 1e6 : 0.0,
                      desc.render.integrator.c_str(), desc.render.spp,
                      stats.packetWidth > 1 ? ("packets of " + std::to_string(stats.packetWidth)).c_str()

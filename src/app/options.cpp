@@ -61,6 +61,9 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
     for (std::string_view n : integratorNames()) integratorHelp += " " + std::string(n);
     render->add_option("--integrator", o.integrator, integratorHelp);
     render->add_option("--seed", o.seed, "Random seed (overrides render.seed)");
+    render->add_option("--max-depth", o.maxDepth,
+                       "Path tracer: maximum bounces (overrides render.max_depth, default 8)")
+        ->check(CLI::Range(0, 1024));
     std::string cropText;
     render->add_option("--crop", cropText,
                        "Render only pixels X0<=x<X1, Y0<=y<Y1 (y=0 at the top): X0,Y0,X1,Y1");

@@ -21,7 +21,7 @@ struct Options {
     std::string scene;
     // render
     std::vector<std::string> outputs;  // overrides the scene's film.outputs
-    std::optional<int> width, height, spp, threads;
+    std::optional<int> width, height, spp, threads, maxDepth;
     std::optional<std::string> integrator;
     std::optional<uint64_t> seed;
     std::optional<PixelRect> crop;

@@ -156,7 +156,7 @@ LoadedScene loadScene(const BenchSceneSpec& spec) {
     shape.mesh.faceMaterials.clear();
     shape.materialOfSlot = {0};
     scene.world.shapes.push_back(std::move(shape));
-    scene.world.materials.push_back(Material{"default", Color(0.8f), Color(0.0f)});
+    scene.world.materials.push_back(Material::diffuse("default", Color(0.8f)));
     return scene;
 }
 
@@ -206,6 +206,7 @@ BenchRow runBenchScene(const BenchSceneSpec& spec, const BenchOptions& options,
         const auto buildStart = Clock::now();
         world.accel = buildEmbreeAccel(accelScene, build);
         row.buildSeconds = secondsSince(buildStart);
+        world.prepareLights();
         row.bvhMegabytes = double(world.accel->memoryBytes()) / (1 << 20);
         const Accel& accel = *world.accel;
 

@@ -2,15 +2,17 @@
 
 namespace strahl {
 
-Ray TileRayGenerator::sampleRay(int px, int py, int s, SampleRng& rng) const {
-    rng = SampleRng(seed_, static_cast<uint32_t>(px), static_cast<uint32_t>(py),
-                    static_cast<uint32_t>(s));
-    float dx = 0.5f, dy = 0.5f;  // one sample: the pixel centre
-    if (spp_ > 1) {
-        dx = rng.nextFloat();
-        dy = rng.nextFloat();
-    }
-    return camera_.generateRay(static_cast<float>(px) + dx, static_cast<float>(py) + dy);
+Ray TileRayGenerator::sampleRay(int px, int py, int s, Sampler& sampler) const {
+    sampler = Sampler(seed_, px, py, static_cast<uint32_t>(s));
+    // The first two pairs of dimensions always go to the camera (filter offset,
+    // lens point), so the integrator's dimensions start at the same place
+    // whatever the camera and the spp.
+    const Vec2 pixel = sampler.get2D();
+    const Vec2 lens = sampler.get2D();
+    Vec2 offset(0.0f);  // one sample: the pixel centre
+    if (spp_ > 1) offset = filter_.sample(pixel);
+    return camera_.generateRay(static_cast<float>(px) + 0.5f + offset.x,
+                               static_cast<float>(py) + 0.5f + offset.y, lens);
 }
 
 }  // namespace strahl

@@ -20,6 +20,12 @@ SurfaceInteraction transformInteraction(const SurfaceInteraction& si, const Mat4
     out.pError = transformPointError(objectToWorld, si.p, si.pError);
     out.Ng = unitOrZero(normalToWorld * si.Ng);
     out.Ns = unitOrZero(normalToWorld * si.Ns);
+    const Mat3 linear(objectToWorld);
+    out.dpdu = linear * si.dpdu;
+    // A uniform scale s stretches world lengths by s: uv per world unit / s.
+    // For other maps the cube root of |det| is the mean scale.
+    const float scale = std::cbrt(std::abs(glm::determinant(linear)));
+    if (scale > 0.0f) out.uvDensity = si.uvDensity / scale;
     return out;
 }
 

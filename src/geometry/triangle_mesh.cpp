@@ -89,7 +89,21 @@ SurfaceInteraction triangleInteraction(const TriangleMesh& mesh, uint32_t prim, 
         }
     }
     if (!mesh.uvs.empty()) {
-        si.uv = b0 * mesh.uvs[i0] + u * mesh.uvs[i1] + v * mesh.uvs[i2];
+        const Vec2 &t0 = mesh.uvs[i0], &t1 = mesh.uvs[i1], &t2 = mesh.uvs[i2];
+        si.uv = b0 * t0 + u * t1 + v * t2;
+        // dp/du from the two edge equations dp_k = dpdu du_k + dpdv dv_k
+        // (pbrt-v4 Triangle::InteractionFromIntersection), solved by Cramer's
+        // rule; a degenerate uv mapping leaves dpdu zero.
+        const Vec2 duv02 = t0 - t2, duv12 = t1 - t2;
+        const Vec3 dp02 = p0 - p2, dp12 = p1 - p2;
+        const float det = duv02.x * duv12.y - duv02.y * duv12.x;
+        if (std::abs(det) > 1e-12f) {
+            const Vec3 dpdu = (duv12.y * dp02 - duv02.y * dp12) / det;
+            if (isFinite(dpdu)) si.dpdu = dpdu;
+        }
+        // Texture footprints: sqrt(uv area / world area) converts a world width
+        // into uv units (isotropic average over the triangle).
+        if (len > 0.0f) si.uvDensity = std::sqrt(0.5f * std::abs(det) / (0.5f * len));
     } else {
         si.uv = Vec2(u, v);
     }

@@ -4,17 +4,29 @@
 
 namespace strahl {
 
+uint32_t objectId(const Hit& hit) {
+    return hit.instID != kInvalidId ? hit.instID : hit.geomID;
+}
+
 CameraSample shadeCameraSample(const World& world, const Integrator& integrator, const Ray& ray,
-                               const Hit& hit, SampleRng& rng, ShadingStats& stats, bool wantAovs) {
+                               const Hit& hit, Sampler& sampler, ShadingStats& stats, bool wantAovs) {
     CameraSample sample;
     if (hit.valid()) {
         const SurfaceHit surface(world, ray, hit);
-        sample.radiance = integrator.shade(world, surface, rng, stats);
+        sample.radiance = integrator.shade(world, surface, sampler, stats);
         sample.aov.hit = true;
         if (wantAovs) {
             sample.aov.normal = surface.shadingNormal();
             sample.aov.depth = hit.t * glm::length(ray.dir);
-            sample.aov.albedo = surface.material().diffuse;
+            const SurfaceInteraction& si = surface.interaction();
+            ShadingPoint sp;
+            sp.p = si.p;
+            sp.n = si.Ns;
+            sp.dpdu = si.dpdu;
+            sp.uv = si.uv;
+            sample.aov.albedo = makeBsdf(surface.material(), sp, world.textures.get()).albedo();
+            sample.aov.position = si.p;
+            sample.aov.objectId = objectId(hit);
         }
     } else {
         sample.radiance = integrator.miss(world, ray);

@@ -6,12 +6,12 @@
 
 namespace strahl {
 
-Color EyelightIntegrator::shade(const World&, const SurfaceHit& hit, SampleRng&,
+Color EyelightIntegrator::shade(const World&, const SurfaceHit& hit, Sampler&,
                                 ShadingStats&) const {
     return Color(std::abs(glm::dot(hit.shadingNormal(), glm::normalize(hit.ray().dir))));
 }
 
-Color NormalIntegrator::shade(const World&, const SurfaceHit& hit, SampleRng&,
+Color NormalIntegrator::shade(const World&, const SurfaceHit& hit, Sampler&,
                               ShadingStats&) const {
     return 0.5f * hit.shadingNormal() + Vec3(0.5f);
 }
@@ -21,12 +21,12 @@ DepthIntegrator::DepthIntegrator(const World& world) {
     invScale_ = diagonal > 0.0f ? 1.0f / diagonal : 1.0f;
 }
 
-Color DepthIntegrator::shade(const World&, const SurfaceHit& hit, SampleRng&, ShadingStats&) const {
+Color DepthIntegrator::shade(const World&, const SurfaceHit& hit, Sampler&, ShadingStats&) const {
     // hit.t is in units of |ray.dir|: scale to a distance for any direction length.
     return Color(hit.hit().t * glm::length(hit.ray().dir) * invScale_);
 }
 
-Color PrimIdIntegrator::shade(const World&, const SurfaceHit& hit, SampleRng&,
+Color PrimIdIntegrator::shade(const World&, const SurfaceHit& hit, Sampler&,
                               ShadingStats&) const {
     // Instances of one prototype get different colours: the instance ID is
     // mixed in (top-level shapes keep the plain (geomID, primID) hash).

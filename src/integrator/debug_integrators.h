@@ -13,20 +13,20 @@ public:
 class EyelightIntegrator final : public DebugIntegrator {
 public:
     std::string_view name() const override { return "eyelight"; }
-    Color shade(const World&, const SurfaceHit& hit, SampleRng&, ShadingStats&) const override;
+    Color shade(const World&, const SurfaceHit& hit, Sampler&, ShadingStats&) const override;
 };
 
 class NormalIntegrator final : public DebugIntegrator {
 public:
     std::string_view name() const override { return "normal"; }
-    Color shade(const World&, const SurfaceHit& hit, SampleRng&, ShadingStats&) const override;
+    Color shade(const World&, const SurfaceHit& hit, Sampler&, ShadingStats&) const override;
 };
 
 class DepthIntegrator final : public DebugIntegrator {
 public:
     explicit DepthIntegrator(const World& world);
     std::string_view name() const override { return "depth"; }
-    Color shade(const World&, const SurfaceHit& hit, SampleRng&, ShadingStats&) const override;
+    Color shade(const World&, const SurfaceHit& hit, Sampler&, ShadingStats&) const override;
 
 private:
     float invScale_ = 1.0f;
@@ -35,7 +35,7 @@ private:
 class PrimIdIntegrator final : public DebugIntegrator {
 public:
     std::string_view name() const override { return "primid"; }
-    Color shade(const World&, const SurfaceHit& hit, SampleRng&, ShadingStats&) const override;
+    Color shade(const World&, const SurfaceHit& hit, Sampler&, ShadingStats&) const override;
 };
 
 }  // namespace strahl

@@ -8,9 +8,11 @@ namespace strahl {
 class DirectIntegrator final : public Integrator {
 public:
     std::string_view name() const override { return "direct"; }
-    Color shade(const World& world, const SurfaceHit& hit, SampleRng& rng,
+    Color shade(const World& world, const SurfaceHit& hit, Sampler& sampler,
                 ShadingStats& stats) const override;
-    Color miss(const World& world, const Ray&) const override { return world.background; }
+    Color miss(const World& world, const Ray& ray) const override {
+        return world.escapedRadiance(glm::normalize(ray.dir));
+    }
 };
 
 }  // namespace strahl

@@ -220,7 +220,7 @@ void rasterizeTile(const RasterScene& scene, const TileRayGenerator& rays, const
     for (int x = tile.x0; x < tile.x1; ++x) centreU[size_t(x - tile.x0)] = scene.view.centreU(x);
     for (int y = tile.y0; y < tile.y1; ++y) centreV[size_t(y - tile.y0)] = scene.view.centreV(y);
     std::vector<Ray> cameraRays(pixels);
-    std::vector<SampleRng> rngs(pixels);
+    std::vector<Sampler> rngs(pixels);
     for (int y = tile.y0; y < tile.y1; ++y)
         for (int x = tile.x0; x < tile.x1; ++x) {
             const size_t k = size_t(y - tile.y0) * size_t(width) + size_t(x - tile.x0);
@@ -365,7 +365,7 @@ std::vector<Hit> rasterizeHits(const World& world, const Camera& camera, const P
                                const RasterOptions& options, RasterStats* stats) {
     std::vector<Hit> hits(static_cast<size_t>(crop.area()));
     const RasterStats result = rasterize(world, camera, crop, options, [&] {
-        return [&](int x, int y, const Ray&, const Hit& hit, SampleRng&) {
+        return [&](int x, int y, const Ray&, const Hit& hit, Sampler&) {
             hits[size_t(y - crop.y0) * size_t(crop.width()) + size_t(x - crop.x0)] = hit;
         };
     });
@@ -381,7 +381,7 @@ RasterStats rasterizeImage(const World& world, const Camera& camera, const Integ
         // One per tile: the debug integrators trace nothing, so the counters
         // stay empty, but shade() wants them.
         return [&, stats = ShadingStats{}](int x, int y, const Ray& ray, const Hit& hit,
-                                           SampleRng& rng) mutable {
+                                           Sampler& rng) mutable {
             const CameraSample sample =
                 shadeCameraSample(world, integrator, ray, hit, rng, stats, wantAovs);
             film.addSample(x, y, sample.radiance, sample.aov);

@@ -33,9 +33,9 @@ struct TileContext {
     ShadingStats stats;
     uint64_t cameraRays = 0;
 
-    void shadeSample(int px, int py, const Ray& ray, const Hit& hit, SampleRng& rng) {
+    void shadeSample(int px, int py, const Ray& ray, const Hit& hit, Sampler& sampler) {
         const CameraSample sample =
-            shadeCameraSample(world, integrator, ray, hit, rng, stats, wantAovs);
+            shadeCameraSample(world, integrator, ray, hit, sampler, stats, wantAovs);
         film.addSample(px, py, sample.radiance, sample.aov);
     }
 };
@@ -55,7 +55,7 @@ void renderTilePackets(TileContext& ctx, const TileRayGenerator& gen, const Pixe
                     Ray ray = packet.rays.ray(lane);
                     ray.tfar = kInfinity;  // the packet's tfar now holds the hit distance
                     ctx.shadeSample(packet.px[lane], packet.py[lane], ray, packet.rays.hit(lane),
-                                    packet.rng[lane]);
+                                    packet.sampler[lane]);
                 }
             }
         }
@@ -64,13 +64,13 @@ void renderTilePackets(TileContext& ctx, const TileRayGenerator& gen, const Pixe
 
 void renderTileSingle(TileContext& ctx, const TileRayGenerator& gen, const PixelRect& tile,
                       int spp) {
-    SampleRng rng;
+    Sampler sampler;
     for (int s = 0; s < spp; ++s) {
         for (int y = tile.y0; y < tile.y1; ++y) {
             for (int x = tile.x0; x < tile.x1; ++x) {
-                const Ray ray = gen.sampleRay(x, y, s, rng);
+                const Ray ray = gen.sampleRay(x, y, s, sampler);
                 ++ctx.cameraRays;
-                ctx.shadeSample(x, y, ray, ctx.world.accel->intersect(ray), rng);
+                ctx.shadeSample(x, y, ray, ctx.world.accel->intersect(ray), sampler);
             }
         }
     }
@@ -93,13 +93,16 @@ RenderStats renderImage(const World& world, const Camera& camera, const Integrat
                         Film& film, const RenderOptions& options) {
     if (options.spp < 1) fail("samples per pixel must be at least 1, got ", options.spp);
     if (options.tileSize < 1) fail("tile size must be at least 1, got ", options.tileSize);
+    // A world whose light set was never built would render without its lights.
+    if (!world.lightsPrepared()) fail("renderImage: World::prepareLights() has not been called");
     const auto start = std::chrono::steady_clock::now();
     const std::vector<PixelRect> tiles = cutTiles(film.crop(), options.tileSize);
-    const TileRayGenerator generator(camera, options.seed, options.spp);
+    const TileRayGenerator generator(camera, options.seed, options.spp, options.filter);
 
     RenderStats result;
     result.packetWidth = resolvePacketWidth(options.packets, *world.accel);
-    std::atomic<uint64_t> cameraRays{0}, shadowRays{0};
+    std::atomic<uint64_t> cameraRays{0}, shadowRays{0}, bounceRays{0};
+    std::atomic<bool> firstTile{true};
     if (options.progress) options.progress->begin("render", tiles.size());
 
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
@@ -117,6 +120,11 @@ RenderStats renderImage(const World& world, const Camera& camera, const Integrat
                     }
                     cameraRays += ctx.cameraRays;
                     shadowRays += ctx.stats.shadowRays;
+                    bounceRays += ctx.stats.bounceRays;
+                    if (firstTile.exchange(false))
+                        result.firstTileSeconds = std::chrono::duration<double>(
+                                                      std::chrono::steady_clock::now() - start)
+                                                      .count();
                     if (options.progress) options.progress->advance(1);
                 }
             },
@@ -128,6 +136,7 @@ RenderStats renderImage(const World& world, const Camera& camera, const Integrat
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     result.cameraRays = cameraRays;
     result.shadowRays = shadowRays;
+    result.bounceRays = bounceRays;
     return result;
 }
 

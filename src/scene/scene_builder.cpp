@@ -11,6 +11,8 @@
 #include <sstream>
 
 #include "instance_flattening.h"
+#include "light_builder.h"
+#include "material_builder.h"
 #include "strahl/core/error.h"
 #include "strahl/meshio/mesh_file.h"
 #include "strahl/reference/naive_accel.h"
@@ -173,11 +175,13 @@ World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTiming
     // Material table: 0 is the built-in default, then the scene's own, then the
     // materials of mesh files, named "<shape>/<material>".
     std::map<std::string, uint32_t> byName;
-    world.materials.push_back(Material{"default", Color(0.8f), Color(0.0f)});
+    Material grey;
+    grey.name = "default";
+    world.materials.push_back(grey);
     byName["default"] = 0;
     for (const MaterialDesc& m : desc.materials) {
         byName[m.name] = static_cast<uint32_t>(world.materials.size());
-        world.materials.push_back(Material{m.name, m.diffuse, m.emission});
+        world.materials.push_back(scene_detail::buildMaterial(m, world));
     }
 
     const scene_detail::FlatInstances flat = scene_detail::flattenInstances(desc);
@@ -246,22 +250,15 @@ World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTiming
         } else {
             for (const MeshMaterial& m : loaded[i].materials) {
                 geometry.materialOfSlot.push_back(static_cast<uint32_t>(world.materials.size()));
-                world.materials.push_back(Material{shape.name + "/" + m.name, m.diffuse, m.emission});
+                world.materials.push_back(
+                    scene_detail::buildMeshMaterial(m, shape.name + "/" + m.name, world));
             }
         }
         jobs[i].destination->push_back(std::move(geometry));
     }
     placeInstances(desc, flat, world);
 
-    for (const LightDesc& l : desc.lights) {
-        Light light;
-        light.type = l.type == LightType::Point ? Light::Type::Point : Light::Type::Directional;
-        light.position = l.position;
-        light.direction = glm::normalize(l.direction);
-        light.intensity = l.intensity;
-        light.irradiance = l.irradiance;
-        world.lights.push_back(light);
-    }
+    for (const LightDesc& l : desc.lights) world.lights.push_back(scene_detail::buildLight(l, desc));
     if (timings) timings->loadSeconds = secondsSince(loadStart);
 
     const auto bvhStart = Clock::now();
@@ -276,6 +273,7 @@ World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTiming
         world.accel = buildEmbreeAccel(refs, accelOptions);
     }
     if (timings) timings->bvhSeconds = secondsSince(bvhStart);
+    world.prepareLights();
     return world;
 }
 
@@ -290,7 +288,29 @@ Camera buildCamera(const CameraDesc& desc, int width, int height) {
         const float fovDegrees = desc.fovYDegrees.value_or(45.0f);
         window = Camera::windowFromFov(glm::radians(fovDegrees), desc.focalDistance, width, height);
     }
-    return Camera(frame, desc.projection, window, desc.focalDistance, width, height);
+    return Camera(frame, desc.projection, window, desc.focalDistance, width, height,
+                  ThinLens{desc.apertureRadius, desc.focusDistance});
+}
+
+PixelFilter buildPixelFilter(const FilmDesc& film) {
+    return PixelFilter::fromName(film.filter, film.filterRadius);
+}
+
+IntegratorOptions buildIntegratorOptions(const SceneDesc& desc, const Camera& camera) {
+    IntegratorOptions options;
+    options.maxDepth = desc.render.maxDepth;
+    options.russianRoulette = desc.render.russianRoulette;
+    options.aoDistance = desc.render.aoDistance;
+    options.aoSamples = desc.render.aoSamples;
+    // One pixel's extent on the image plane: a width for orthographic rays,
+    // an angle (extent / focal distance) for perspective ones.
+    const ImageWindow& w = camera.window();
+    const float pixel = std::abs(w.t - w.b) / static_cast<float>(camera.height());
+    if (camera.projection() == Projection::Orthographic)
+        options.coneWidth = pixel;
+    else
+        options.coneAngle = pixel / camera.focalDistance();
+    return options;
 }
 
 std::string describeCamera(const CameraDesc& desc) {

@@ -19,8 +19,10 @@
 #include "implicit_parser.h"
 #include "parametric_parser.h"
 #include "json_reader.h"
+#include "material_parser.h"
 #include "transform_parser.h"
 #include "strahl/core/error.h"
+#include "strahl/core/filter.h"
 #include "strahl/film/image_output.h"
 #include "strahl/integrator/integrator.h"
 #include "strahl/scene/scene_desc.h"
@@ -62,7 +64,8 @@ ImageWindow parseWindow(const JsonValue& value) {
 }
 
 CameraDesc parseCamera(const JsonValue& v) {
-    v.requireKeys({"type", "eye", "look_at", "back", "up", "focal_distance", "fov", "window"});
+    v.requireKeys({"type", "eye", "look_at", "back", "up", "focal_distance", "fov", "window",
+                   "aperture_radius", "focus_distance"});
     CameraDesc c;
     if (auto type = v.find("type"))
         c.projection = type->oneOf({"perspective", "orthographic"}) == "perspective"
@@ -108,6 +111,16 @@ CameraDesc parseCamera(const JsonValue& v) {
         c.fovYDegrees = degrees;
     }
     if (auto window = v.find("window")) c.window = parseWindow(*window);
+    if (auto aperture = v.find("aperture_radius")) {
+        c.apertureRadius = aperture->number();
+        if (!(c.apertureRadius >= 0.0f))
+            aperture->fail("must be at least 0, got ", aperture->raw().dump());
+    }
+    if (auto focus = v.find("focus_distance")) {
+        const float f = focus->number();
+        if (!(f > 0.0f)) focus->fail("must be greater than 0, got ", focus->raw().dump());
+        c.focusDistance = f;
+    }
 
     if (!c.fovYDegrees && !c.window) {
         if (c.projection == Projection::Perspective)
@@ -121,7 +134,7 @@ CameraDesc parseCamera(const JsonValue& v) {
 // --- film and render -----------------------------------------------------------
 
 FilmDesc parseFilm(const JsonValue& v, const fs::path& folder) {
-    v.requireKeys({"width", "height", "outputs", "aovs", "exr_float"});
+    v.requireKeys({"width", "height", "outputs", "aovs", "exr_float", "filter"});
     FilmDesc f;
     if (auto width = v.find("width")) f.width = static_cast<int>(width->integer(1, kMaxFilmSide));
     if (auto height = v.find("height"))
@@ -151,44 +164,43 @@ FilmDesc parseFilm(const JsonValue& v, const fs::path& folder) {
         }
     }
     if (auto exrFloat = v.find("exr_float")) f.exrFloat = exrFloat->boolean();
+    if (auto filter = v.find("filter")) {
+        if (filter->raw().is_object()) {
+            filter->requireKeys({"type", "radius"});
+            f.filter = filter->get("type").oneOf(PixelFilter::names());
+            if (auto radius = filter->find("radius")) {
+                const float r = radius->number();
+                // Beyond 16 pixels a filter is a blur, not an antialiasing filter.
+                if (!(r > 0.0f && r <= 16.0f))
+                    radius->fail("must be greater than 0 and at most 16 pixels, got ",
+                                 radius->raw().dump());
+                f.filterRadius = r;
+            }
+        } else {
+            f.filter = filter->oneOf(PixelFilter::names());
+        }
+    }
     return f;
 }
 
 RenderDesc parseRender(const JsonValue& v) {
-    v.requireKeys({"integrator", "spp", "seed"});
+    v.requireKeys({"integrator", "spp", "seed", "max_depth", "russian_roulette", "ao_distance",
+                   "ao_samples"});
     RenderDesc r;
     if (auto integrator = v.find("integrator"))
         r.integrator = integrator->oneOf(integratorNames());
     if (auto spp = v.find("spp")) r.spp = static_cast<int>(spp->integer(1, kMaxSpp));
     if (auto seed = v.find("seed"))
         r.seed = seed->unsignedInteger(std::numeric_limits<uint64_t>::max());
-    return r;
-}
-
-// --- materials -----------------------------------------------------------------
-
-std::vector<MaterialDesc> parseMaterials(const JsonValue& v) {
-    std::vector<MaterialDesc> materials;
-    for (size_t i = 0; i < v.size(); ++i) {
-        const JsonValue m = v.at(i);
-        m.requireKeys({"name", "type", "color", "emission"});
-        MaterialDesc desc;
-        desc.where = m.pointer();
-        const JsonValue name = m.get("name");
-        desc.name = name.string();
-        if (desc.name.empty()) name.fail("must not be empty");
-        if (desc.name == "default")
-            name.fail("'default' is reserved for the built-in grey material");
-        for (const MaterialDesc& earlier : materials) {
-            if (earlier.name == desc.name)
-                name.fail("material '", desc.name, "' is already defined at ", earlier.where);
-        }
-        if (auto type = m.find("type")) type->oneOf({"diffuse"});
-        if (auto color = m.find("color")) desc.diffuse = color->color();
-        if (auto emission = m.find("emission")) desc.emission = emission->color();
-        materials.push_back(std::move(desc));
+    // Paths longer than 1024 bounces carry no measurable energy.
+    if (auto depth = v.find("max_depth")) r.maxDepth = static_cast<int>(depth->integer(0, 1024));
+    if (auto rr = v.find("russian_roulette")) r.russianRoulette = rr->boolean();
+    if (auto distance = v.find("ao_distance")) {
+        r.aoDistance = distance->number();
+        if (!(r.aoDistance >= 0.0f)) distance->fail("must be non-negative, got ", r.aoDistance);
     }
-    return materials;
+    if (auto samples = v.find("ao_samples")) r.aoSamples = static_cast<int>(samples->integer(1, 4096));
+    return r;
 }
 
 // --- shapes --------------------------------------------------------------------
@@ -200,9 +212,10 @@ void checkMeshFile(const JsonValue& value, const fs::path& path) {
         value.fail("no such file '", given, "' (looked at ", path.string(), ")");
     if (!fs::is_regular_file(path, ec))
         value.fail("'", given, "' is not a regular file (looked at ", path.string(), ")");
-    constexpr std::string_view kMeshExtensions[] = {".obj", ".ply"};
+    constexpr std::string_view kMeshExtensions[] = {".obj", ".ply", ".gltf", ".glb"};
     if (!hasExtension(path, kMeshExtensions))
-        value.fail("'", given, "' is not a supported mesh format (extensions: .obj, .ply)");
+        value.fail("'", given,
+                   "' is not a supported mesh format (extensions: .obj, .ply, .gltf, .glb)");
 }
 
 TriangleMesh parseInlineMesh(const JsonValue& v, const std::string& label) {
@@ -389,22 +402,76 @@ std::vector<GroupDesc> parseGroups(const JsonValue& groups, const ShapeContext& 
 
 // --- lights --------------------------------------------------------------------
 
-LightDesc parseLight(const JsonValue& v) {
+Vec3 nonZeroDirection(const JsonValue& v) {
+    const Vec3 d = v.vec3();
+    if (d == Vec3(0.0f)) v.fail("must be non-zero");
+    return unitVector(d);
+}
+
+Color nonNegative(const JsonValue& v) {
+    const Color c = v.color();
+    if (!(c.x >= 0.0f && c.y >= 0.0f && c.z >= 0.0f))
+        v.fail("must be non-negative, got (", c.x, ", ", c.y, ", ", c.z, ")");
+    return c;
+}
+
+float degreesIn(const JsonValue& v, float lo, float hi) {
+    const float x = v.number();
+    if (!(x >= lo && x <= hi)) v.fail("must be in [", lo, ", ", hi, "] degrees, got ", x);
+    return x;
+}
+
+LightDesc parseLight(const JsonValue& v, const fs::path& folder) {
     LightDesc l;
     l.where = v.pointer();
-    if (v.get("type").oneOf({"point", "directional"}) == "point") {
+    const std::string type =
+        v.get("type").oneOf({"point", "spot", "directional", "sun", "environment", "sky"});
+    if (type == "point") {
         v.requireKeys({"type", "position", "intensity"});
         l.type = LightType::Point;
         l.position = v.get("position").vec3();
-        if (auto intensity = v.find("intensity")) l.intensity = intensity->color();
-    } else {
-        v.requireKeys({"type", "direction", "irradiance"});
+        if (auto intensity = v.find("intensity")) l.intensity = nonNegative(*intensity);
+    } else if (type == "spot") {
+        v.requireKeys({"type", "position", "direction", "look_at", "intensity", "cone_angle",
+                       "falloff_start"});
+        l.type = LightType::Spot;
+        l.position = v.get("position").vec3();
+        if (v.has("direction") == v.has("look_at"))
+            v.fail("give exactly one of 'direction' and 'look_at'");
+        if (auto direction = v.find("direction")) l.direction = nonZeroDirection(*direction);
+        if (auto target = v.find("look_at")) {
+            const Vec3 d = target->vec3() - l.position;
+            if (d == Vec3(0.0f)) target->fail("must differ from the position");
+            l.direction = unitVector(d);
+        }
+        if (auto intensity = v.find("intensity")) l.intensity = nonNegative(*intensity);
+        if (auto cone = v.find("cone_angle")) l.coneAngle = degreesIn(*cone, 0.01f, 180.0f);
+        l.falloffStart = std::min(l.falloffStart, l.coneAngle);
+        if (auto start = v.find("falloff_start"))
+            l.falloffStart = degreesIn(*start, 0.0f, l.coneAngle);
+    } else if (type == "directional" || type == "sun") {
+        v.requireKeys({"type", "direction", "irradiance", "angular_diameter"});
         l.type = LightType::Directional;
-        const JsonValue direction = v.get("direction");
-        const Vec3 d = direction.vec3();
-        if (d == Vec3(0.0f)) direction.fail("must be non-zero");
-        l.direction = unitVector(d);
-        if (auto irradiance = v.find("irradiance")) l.irradiance = irradiance->color();
+        l.direction = nonZeroDirection(v.get("direction"));
+        if (auto irradiance = v.find("irradiance")) l.irradiance = nonNegative(*irradiance);
+        // The sun seen from the earth is 0.53 degrees across.
+        if (type == "sun") l.angularDiameter = 0.53f;
+        if (auto diameter = v.find("angular_diameter"))
+            l.angularDiameter = degreesIn(*diameter, 0.0f, 90.0f);
+    } else if (type == "environment") {
+        v.requireKeys({"type", "file", "scale", "rotation"});
+        l.type = LightType::Environment;
+        const JsonValue file = v.get("file");
+        l.file = resolvePath(folder, file);
+        std::error_code ec;
+        if (!fs::is_regular_file(l.file, ec))
+            file.fail("no such image file '", file.string(), "' (looked at ", l.file.string(), ")");
+        if (auto scale = v.find("scale")) l.scale = nonNegative(*scale);
+        if (auto rotation = v.find("rotation")) l.rotation = degreesIn(*rotation, -360.0f, 360.0f);
+    } else {
+        v.requireKeys({"type", "radiance"});
+        l.type = LightType::Sky;
+        if (auto radiance = v.find("radiance")) l.radiance = nonNegative(*radiance);
     }
     return l;
 }
@@ -427,8 +494,9 @@ SceneDesc parseSceneText(const std::string& text, const fs::path& file) {
     scene.camera = parseCamera(root.find("camera").value_or(JsonValue(noCamera, "/camera", label)));
     if (auto film = root.find("film")) scene.film = parseFilm(*film, folder);
     if (auto render = root.find("render")) scene.render = parseRender(*render);
-    if (auto background = root.find("background")) scene.background = background->color();
-    if (auto materials = root.find("materials")) scene.materials = parseMaterials(*materials);
+    if (auto background = root.find("background")) scene.background = nonNegative(*background);
+    if (auto materials = root.find("materials"))
+        scene.materials = scene_detail::parseMaterials(*materials, folder);
 
     const auto groups = root.find("groups");
     const std::vector<std::string> groupNames =
@@ -449,7 +517,7 @@ SceneDesc parseSceneText(const std::string& text, const fs::path& file) {
 
     if (auto lights = root.find("lights")) {
         for (size_t i = 0; i < lights->size(); ++i)
-            scene.lights.push_back(parseLight(lights->at(i)));
+            scene.lights.push_back(parseLight(lights->at(i), folder));
     }
     return scene;
 }

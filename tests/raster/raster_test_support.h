@@ -44,7 +44,7 @@ inline std::vector<Hit> traceHits(const TestScene& scene) {
     std::vector<Hit> hits;
     for (int y = 0; y < scene.desc.film.height; ++y)
         for (int x = 0; x < scene.desc.film.width; ++x) {
-            SampleRng rng;
+            Sampler rng;
             hits.push_back(scene.world.accel->intersect(rays.sampleRay(x, y, 0, rng)));
         }
     return hits;

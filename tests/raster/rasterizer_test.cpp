@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "raster_test_support.h"
-#include "strahl/core/rng.h"
+#include "strahl/core/sampler.h"
 #include "strahl/reference/watertight_triangle.h"
 #include "test_support.h"
 
@@ -270,7 +270,7 @@ int expectHiddenBeforeRayStart(const TestScene& scene, const std::vector<Hit>& r
     int hidden = 0;
     for (int y = 0; y < scene.desc.film.height; ++y)
         for (int x = 0; x < scene.width(); ++x) {
-            SampleRng rng;
+            Sampler rng;
             Ray line = rays.sampleRay(x, y, 0, rng);
             line.origin -= kBackwards * line.dir;
             line.tfar = kBackwards;

@@ -79,7 +79,7 @@ Color primIdColour(const World& world, uint32_t geomID, uint32_t primID) {
     hit.t = 1.0f;
     hit.geomID = geomID;
     hit.primID = primID;
-    SampleRng rng;
+    Sampler rng;
     ShadingStats stats;
     return makeIntegrator("primid", world)->shade(world, SurfaceHit(world, Ray{}, hit), rng, stats);
 }

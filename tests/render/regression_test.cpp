@@ -41,7 +41,10 @@ TEST_P(Regression, MatchesReference) {
     RenderOptions options;
     options.spp = desc.render.spp;
     options.seed = desc.render.seed;
-    renderImage(world, camera, *makeIntegrator(desc.render.integrator, world), film, options);
+    options.filter = buildPixelFilter(desc.film);
+    renderImage(world, camera,
+                *makeIntegrator(desc.render.integrator, world, buildIntegratorOptions(desc, camera)),
+                film, options);
 
     const fs::path rendered = test::scratchDir("regression-" + GetParam()) / "render.exr";
     OutputSettings settings;

@@ -35,7 +35,10 @@ inline Rendered render(const SceneDesc& desc, AccelKind accel, const std::string
     options.tileSize = tile;
     options.spp = desc.render.spp;
     options.seed = desc.render.seed;
-    renderImage(world, camera, *makeIntegrator(integrator, world), film, options);
+    options.filter = buildPixelFilter(desc.film);
+    renderImage(world, camera,
+                *makeIntegrator(integrator, world, buildIntegratorOptions(desc, camera)), film,
+                options);
     return Rendered{film.resolveBeauty(), film.resolveAov(AovKind::Depth),
                     film.resolveAov(AovKind::Normal)};
 }

@@ -13,7 +13,7 @@ namespace {
 // A 20 x 20 floor quad at y = 0 (albedo rho) with an optional small occluder.
 World floorWorld(float rho, bool occluder) {
     World world;
-    world.materials.push_back(Material{"floor", Color(rho), Color(0.0f)});
+    world.materials.push_back(Material::diffuse("floor", Color(rho)));
     SceneShape floor;
     floor.mesh.positions = {{-10, 0, -10}, {10, 0, -10}, {10, 0, 10}, {-10, 0, 10}};
     floor.mesh.indices = {0, 2, 1, 0, 3, 2};
@@ -32,7 +32,24 @@ World floorWorld(float rho, bool occluder) {
         meshes.push_back(&g.mesh);
     }
     world.accel = buildEmbreeAccel(meshes, {});
+    world.prepareLights();
     return world;
+}
+
+Light pointLight(const Vec3& position, const Color& intensity) {
+    Light light;
+    light.type = Light::Type::Point;
+    light.position = position;
+    light.intensity = intensity;
+    return light;
+}
+
+Light directionalLight(const Vec3& direction, const Color& irradiance) {
+    Light light;
+    light.type = Light::Type::Directional;
+    light.direction = direction;
+    light.irradiance = irradiance;
+    return light;
 }
 
 // Orthographic camera 5 units above the floor looking straight down; with an
@@ -58,7 +75,8 @@ Color renderCentre(const World& world, const std::string& integrator) {
 TEST(DirectIntegrator, PointLightFollowsTheInverseSquareLaw) {
     World world = floorWorld(0.5f, false);
     const float I = 8.0f, h = 2.0f;
-    world.lights.push_back(Light{Light::Type::Point, Vec3(0, h, 0), {}, Color(I), {}});
+    world.lights.push_back(pointLight(Vec3(0, h, 0), Color(I)));
+    world.prepareLights();
     const Color L = renderCentre(world, "direct");
     // L = rho/pi * I/h^2 * cos(0)
     EXPECT_NEAR(L.x, 0.5f / kPi * I / (h * h), 1e-5f);
@@ -67,14 +85,16 @@ TEST(DirectIntegrator, PointLightFollowsTheInverseSquareLaw) {
 TEST(DirectIntegrator, DirectionalLightFollowsLambertsCosineLaw) {
     World world = floorWorld(0.6f, false);
     const Vec3 dir = glm::normalize(Vec3(1, -1, 0));  // 45 degrees
-    world.lights.push_back(Light{Light::Type::Directional, {}, dir, {}, Color(2.0f)});
+    world.lights.push_back(directionalLight(dir, Color(2.0f)));
+    world.prepareLights();
     const Color L = renderCentre(world, "direct");
     EXPECT_NEAR(L.y, 0.6f / kPi * 2.0f * std::cos(kPi / 4), 1e-5f);
 }
 
 TEST(DirectIntegrator, OccluderCastsAHardShadow) {
     World world = floorWorld(0.5f, true);
-    world.lights.push_back(Light{Light::Type::Point, Vec3(0, 3, 0), {}, Color(5.0f), {}});
+    world.lights.push_back(pointLight(Vec3(0, 3, 0), Color(5.0f)));
+    world.prepareLights();
     // From above, the camera sees the occluder's top at y = 1, lit from 2 units.
     EXPECT_NEAR(renderCentre(world, "direct").x, 0.5f / kPi * 5.0f / 4.0f, 1e-5f);
     // From between occluder and floor, it sees the floor in the occluder's shadow.
@@ -88,7 +108,8 @@ TEST(DirectIntegrator, OccluderCastsAHardShadow) {
 TEST(DirectIntegrator, GrazingLightDoesNotProduceShadowAcne) {
     // A light just above a large floor: every pixel the light reaches must be lit.
     World world = floorWorld(0.5f, false);
-    world.lights.push_back(Light{Light::Type::Point, Vec3(0, 0.01f, 0), {}, Color(1.0f), {}});
+    world.lights.push_back(pointLight(Vec3(0, 0.01f, 0), Color(1.0f)));
+    world.prepareLights();
     Film film(33, 33, PixelRect{0, 0, 33, 33}, {});
     const Camera cam(CameraFrame::fromBackUp(Vec3(0, 5, 0), Vec3(0, 1, 0), Vec3(0, 0, -1)),
                      Projection::Orthographic, ImageWindow{-8, 8, -8, 8}, 1.0f, 33, 33);
@@ -120,9 +141,10 @@ TEST(Renderer, AovsDescribeTheFirstHit) {
 // A small scene with several triangles, lights, jittered samples and misses.
 World richWorld() {
     World world = floorWorld(0.5f, true);
-    world.lights.push_back(Light{Light::Type::Point, Vec3(1, 3, 1), {}, Color(5.0f), {}});
-    world.lights.push_back(Light{Light::Type::Directional, {}, glm::normalize(Vec3(-1, -2, 0)), {}, Color(0.5f)});
+    world.lights.push_back(pointLight(Vec3(1, 3, 1), Color(5.0f)));
+    world.lights.push_back(directionalLight(glm::normalize(Vec3(-1, -2, 0)), Color(0.5f)));
     world.background = Color(0.1f, 0.2f, 0.3f);
+    world.prepareLights();
     return world;
 }
 

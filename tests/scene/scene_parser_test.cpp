@@ -186,12 +186,12 @@ TEST(SceneParser, MaterialsAndShapeReferences) {
                         "positions": [[0,0,0],[1,0,0],[0,1,0]], "indices": [0,1,2]}]})");
     ASSERT_EQ(s.materials.size(), 2u);
     EXPECT_EQ(s.materials[0].name, "red");
-    EXPECT_EQ(s.materials[0].diffuse, Color(0.63f, 0.06f, 0.04f));
-    EXPECT_EQ(s.materials[0].emission, Color(0.0f));
+    EXPECT_EQ(s.materials[0].material.color.value, Color(0.63f, 0.06f, 0.04f));
+    EXPECT_EQ(s.materials[0].material.emission.value, Color(0.0f));
     EXPECT_EQ(s.materials[0].where, "/materials/0");
     EXPECT_EQ(s.materials[1].name, "lamp");
-    EXPECT_EQ(s.materials[1].diffuse, Color(0.0f));
-    EXPECT_EQ(s.materials[1].emission, Color(10.0f, 8.0f, 6.0f));
+    EXPECT_EQ(s.materials[1].material.color.value, Color(0.0f));
+    EXPECT_EQ(s.materials[1].material.emission.value, Color(10.0f, 8.0f, 6.0f));
     EXPECT_EQ(s.materials[1].where, "/materials/1");
 
     ASSERT_EQ(s.shapes.size(), 3u);
@@ -353,7 +353,7 @@ TEST(SceneParser, MeshFileMustBeARegularObjOrPlyFile) {
         return std::string("no error");
     };
     EXPECT_EQ(errorFor("mesh.stl"), scene.string() + ": /shapes/0/file: 'mesh.stl' is not a " +
-                                        "supported mesh format (extensions: .obj, .ply)");
+                                        "supported mesh format (extensions: .obj, .ply, .gltf, .glb)");
     EXPECT_EQ(errorFor("folder.obj"), scene.string() +
                                           ": /shapes/0/file: 'folder.obj' is not a regular file " +
                                           "(looked at " + (dir / "folder.obj").string() + ")");
@@ -410,15 +410,19 @@ TEST(SceneParser, TopLevelMustBeAnObject) {
 TEST(SceneParser, UnknownKeysNameTheObjectAndTheAllowedKeys) {
     EXPECT_EQ(errorWith(R"("camera": {"fvo": 30})"),
               "scene.json: /camera: unknown key 'fvo' (allowed: type, eye, look_at, back, up, "
-              "focal_distance, fov, window)");
+              "focal_distance, fov, window, aperture_radius, focus_distance)");
     EXPECT_EQ(errorWith(R"("film": {"widht": 30})"),
               "scene.json: /film: unknown key 'widht' (allowed: width, height, outputs, aovs, "
-              "exr_float)");
+              "exr_float, filter)");
     EXPECT_EQ(errorWith(R"("render": {"samples": 4})"),
-              "scene.json: /render: unknown key 'samples' (allowed: integrator, spp, seed)");
+              "scene.json: /render: unknown key 'samples' (allowed: integrator, spp, seed, "
+              "max_depth, russian_roulette, ao_distance, ao_samples)");
     EXPECT_EQ(errorWith(R"("materials": [{"name": "a", "colour": 1}])"),
-              "scene.json: /materials/0: unknown key 'colour' (allowed: name, type, color, "
-              "emission)");
+              "scene.json: /materials/0: unknown key 'colour' for a diffuse material (allowed: "
+              "name, type, emission, two_sided, normal_map, mapping, color, diffuse)");
+    EXPECT_EQ(errorWith(R"("materials": [{"name": "a", "type": "conductor", "color": 1}])"),
+              "scene.json: /materials/0: unknown key 'color' for a conductor material (allowed: "
+              "name, type, emission, two_sided, normal_map, mapping, metal, eta, k, roughness)");
     EXPECT_EQ(errorOf(triangleWith(R"("faces": [0, 1, 2])")),
               "scene.json: /shapes/0: unknown key 'faces' (allowed: type, name, file, positions, "
               "indices, normals, uvs, material, transform)");
@@ -428,7 +432,15 @@ TEST(SceneParser, UnknownKeysNameTheObjectAndTheAllowedKeys) {
     EXPECT_EQ(
         errorWith(R"("lights": [{"type": "directional", "direction": [1,0,0], "intensity": 1}])"),
         "scene.json: /lights/0: unknown key 'intensity' (allowed: type, direction, "
-        "irradiance)");
+        "irradiance, angular_diameter)");
+    EXPECT_EQ(
+        errorWith(R"("lights": [{"type": "sky", "intensity": 1}])"),
+        "scene.json: /lights/0: unknown key 'intensity' (allowed: type, "
+        "radiance)");
+    EXPECT_EQ(
+        errorWith(R"("lights": [{"type": "sun", "direction": [1,0,0], "intensity": 1}])"),
+        "scene.json: /lights/0: unknown key 'intensity' (allowed: type, direction, "
+        "irradiance, angular_diameter)");
     EXPECT_EQ(
         errorOf(triangleWith(R"("transform": [{"rotate": {"axis": [0,1,0], "degrees": 3}}])")),
         "scene.json: /shapes/0/transform/0/rotate: unknown key 'degrees' (allowed: axis, "
@@ -497,11 +509,12 @@ TEST(SceneParser, OutOfRangeValues) {
 TEST(SceneParser, EnumerationsListTheChoices) {
     EXPECT_EQ(errorWith(R"("camera": {"type": "fisheye"})"),
               "scene.json: /camera/type: must be one of perspective, orthographic, got 'fisheye'");
-    EXPECT_EQ(errorWith(R"("render": {"integrator": "path"})"),
+    EXPECT_EQ(errorWith(R"("render": {"integrator": "whitted"})"),
               "scene.json: /render/integrator: must be one of eyelight, normal, depth, primid, "
-              "direct, got 'path'");
+              "direct, ao, path, got 'whitted'");
     EXPECT_EQ(errorWith(R"("film": {"aovs": ["normal", "uv"]})"),
-              "scene.json: /film/aovs/1: must be one of normal, depth, albedo, got 'uv'");
+              "scene.json: /film/aovs/1: must be one of normal, depth, albedo, position, "
+              "objectid, variance, got 'uv'");
     EXPECT_EQ(errorWith(R"("film": {"aovs": ["depth", "normal", "depth"]})"),
               "scene.json: /film/aovs/2: 'depth' is listed twice");
     EXPECT_EQ(errorWith(R"("film": {"outputs": ["a.png", "b.bmp"]})"),
@@ -510,9 +523,11 @@ TEST(SceneParser, EnumerationsListTheChoices) {
     EXPECT_EQ(errorWith(R"("film": {"outputs": [""]})"),
               "scene.json: /film/outputs/0: expected a path, got an empty string");
     EXPECT_EQ(errorWith(R"("materials": [{"name": "a", "type": "glass"}])"),
-              "scene.json: /materials/0/type: must be one of diffuse, got 'glass'");
-    EXPECT_EQ(errorWith(R"("lights": [{"type": "spot"}])"),
-              "scene.json: /lights/0/type: must be one of point, directional, got 'spot'");
+              "scene.json: /materials/0/type: must be one of diffuse, phong, blinn, conductor, "
+              "dielectric, plastic, metallic_roughness, emissive, got 'glass'");
+    EXPECT_EQ(errorWith(R"("lights": [{"type": "area"}])"),
+              "scene.json: /lights/0/type: must be one of point, spot, directional, sun, "
+              "environment, sky, got 'area'");
 }
 
 TEST(SceneParser, CameraConsistency) {

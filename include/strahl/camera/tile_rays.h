@@ -6,18 +6,22 @@
 //
 // Sample positions: with one sample per pixel the ray goes through the pixel
 // centre (i + 0.5, j + 0.5), exactly the textbook image-order ray; with more,
-// each sample is jittered uniformly inside the pixel by a generator seeded from
-// (seed, pixel, sample index) only, so images never depend on the thread count
-// or the order tiles are rendered in. The same generator, left positioned after
-// the camera's draws, is handed to the integrator.
+// each sample is offset from the centre by the pixel filter's importance
+// sampling (core/filter.h; the default box of radius 0.5 is a uniform jitter
+// inside the pixel) and credited to its own pixel with weight 1. The first
+// two dimension pairs of the sample's low-discrepancy sampler (core/sampler.h,
+// seeded from seed, pixel and sample index only, so images never depend on the
+// thread count or tile order) give the filter offset and the thin-lens point;
+// the sampler, positioned after them, is handed to the integrator.
 
 #include <cstdint>
 #include <vector>
 
 #include "strahl/camera/camera.h"
 #include "strahl/core/packet.h"
+#include "strahl/core/filter.h"
 #include "strahl/core/pixel_rect.h"
-#include "strahl/core/rng.h"
+#include "strahl/core/sampler.h"
 
 namespace strahl {
 
@@ -29,16 +33,17 @@ struct CameraPacket {
     RayHitPacket<N> rays;
     alignas(64) int valid[N];  // -1 active, 0 inactive (Embree's convention)
     int px[N], py[N];
-    SampleRng rng[N];
+    Sampler sampler[N];
 };
 
 class TileRayGenerator {
 public:
-    TileRayGenerator(const Camera& camera, uint64_t seed, int spp)
-        : camera_(camera), seed_(seed), spp_(spp) {}
+    TileRayGenerator(const Camera& camera, uint64_t seed, int spp,
+                     PixelFilter filter = PixelFilter::box())
+        : camera_(camera), seed_(seed), spp_(spp), filter_(std::move(filter)) {}
 
-    // Sample `s` of pixel (px, py); rng receives that sample's generator.
-    Ray sampleRay(int px, int py, int s, SampleRng& rng) const;
+    // Sample `s` of pixel (px, py); `sampler` is set to that sample's sampler, positioned after the camera's dimensions.
+    Ray sampleRay(int px, int py, int s, Sampler& sampler) const;
 
     // Fills the packet for the block whose top-left pixel is (bx, by), clipped to
     // `tile`. Returns the number of active lanes.
@@ -54,6 +59,7 @@ private:
     const Camera& camera_;
     uint64_t seed_;
     int spp_;
+    PixelFilter filter_;
 };
 
 template <int N>
@@ -66,7 +72,7 @@ int TileRayGenerator::fillPacket(const PixelRect& tile, int bx, int by, int s,
         packet.px[lane] = x;
         packet.py[lane] = y;
         if (x < tile.x1 && y < tile.y1) {
-            packet.rays.setRay(lane, sampleRay(x, y, s, packet.rng[lane]));
+            packet.rays.setRay(lane, sampleRay(x, y, s, packet.sampler[lane]));
             packet.valid[lane] = -1;
             ++active;
         } else {

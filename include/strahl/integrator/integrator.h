@@ -5,11 +5,16 @@
 //   normal    the shading normal mapped to colour, 0.5 N + 0.5
 //   depth     hit distance divided by the scene's bounding-box diagonal (grey)
 //   primid    a stable pseudo-random colour per (geomID, primID)
-//   direct    emission + Lambertian reflection of point and directional lights
-//             with hard shadows (one occlusion ray per light)
+//   direct    emission + the materials' reflection of every light, one
+//             shadow ray per light (area and environment lights: one sample)
+//   ao        ambient occlusion: the fraction of the cosine-weighted
+//             hemisphere not blocked within a distance
+//   path      unidirectional path tracing with next-event estimation and
+//             multiple importance sampling (power heuristic), Russian roulette
 //
-// Debug integrators return black for rays that miss; `direct` returns the
-// scene background. Surfaces are two-sided.
+// Debug integrators return black for rays that miss; `direct` and `path`
+// return what the infinite lights (background, environment) send along the
+// ray. Opaque surfaces are two-sided.
 
 #include <cstdint>
 #include <memory>
@@ -19,7 +24,7 @@
 
 #include "strahl/core/math.h"
 #include "strahl/core/ray.h"
-#include "strahl/core/rng.h"
+#include "strahl/core/sampler.h"
 #include "strahl/integrator/surface_hit.h"
 #include "strahl/integrator/world.h"
 
@@ -28,6 +33,22 @@ namespace strahl {
 // Per-thread counters, summed by the renderer.
 struct ShadingStats {
     uint64_t shadowRays = 0;
+    uint64_t bounceRays = 0;  // secondary rays other than shadow rays
+};
+
+// Which estimators the path tracer combines (the single ones are for tests).
+enum class LightSampling { Mis, BsdfOnly, LightOnly };
+
+struct IntegratorOptions {
+    int maxDepth = 8;          // path: bounces; 0 shows emitters only
+    bool russianRoulette = true;
+    LightSampling sampling = LightSampling::Mis;
+    float aoDistance = 0.0f;   // ao: occluder search distance; 0: the scene's diagonal / 4
+    int aoSamples = 1;         // ao: rays per camera sample
+    // Ray cone of camera rays for texture filtering: footprint width at
+    // distance t is coneWidth + coneAngle * t (perspective: coneWidth 0).
+    float coneWidth = 0.0f;
+    float coneAngle = 0.0f;
 };
 
 class Integrator {
@@ -36,7 +57,7 @@ public:
     virtual std::string_view name() const = 0;
 
     // Radiance along a ray towards its closest hit.
-    virtual Color shade(const World& world, const SurfaceHit& hit, SampleRng& rng,
+    virtual Color shade(const World& world, const SurfaceHit& hit, Sampler& sampler,
                         ShadingStats& stats) const = 0;
     // Radiance along a ray that hit nothing.
     virtual Color miss(const World& world, const Ray& ray) const = 0;
@@ -46,6 +67,7 @@ std::span<const std::string_view> integratorNames();
 
 // Throws strahl::Error naming the integrator and the valid names if unknown.
 void requireIntegratorName(std::string_view name);
-std::unique_ptr<Integrator> makeIntegrator(std::string_view name, const World& world);
+std::unique_ptr<Integrator> makeIntegrator(std::string_view name, const World& world,
+                                           const IntegratorOptions& options = {});
 
 }  // namespace strahl

@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "strahl/accel/accel.h"
@@ -13,6 +14,7 @@
 #include "strahl/geometry/user_shape.h"
 #include "strahl/integrator/light.h"
 #include "strahl/integrator/material.h"
+#include "strahl/texture/texture_system.h"
 
 namespace strahl {
 
@@ -57,9 +59,24 @@ struct World {
     std::vector<Prototype> prototypes;
     std::vector<SceneInstance> instances;  // instance k has instID shapes.size() + k
     std::vector<Material> materials;
-    std::vector<Light> lights;
-    Color background{0.0f};
+    std::vector<Light> lights;  // explicit lights: point, spot, directional, environment
+    Color background{0.0f};     // radiance of escaping rays: a constant sky light
     std::unique_ptr<Accel> accel;
+    std::unique_ptr<TextureSystem> textures;  // null when no material uses a texture
+    // Every light the integrators sample: `lights`, the sky of `background`
+    // and one triangle light per triangle with uniform emission (top level and
+    // in each instance). Built by prepareLights() once shapes, instances and
+    // materials are final.
+    LightSet lightSet;
+
+    void prepareLights();
+    bool lightsPrepared() const { return lightsPrepared_; }
+    // The lightSet index of the emissive triangle a valid hit lies on, or
+    // kInvalidId if it is not an area light (no emission, textured emission,
+    // or a user shape: those are found by BSDF sampling only).
+    uint32_t areaLightOf(const Hit& hit) const;
+    // Radiance a ray escaping in direction dir receives (all infinite lights).
+    Color escapedRadiance(const Vec3& dir) const;
 
     // The instance a valid hit lies in, or null for a top-level shape.
     const SceneInstance* instance(const Hit& hit) const {
@@ -86,6 +103,13 @@ struct World {
     // As rendered: every instance counts its prototype's triangles again.
     size_t instancedTriangleCount() const;
     size_t shapeMemoryBytes() const;
+
+private:
+    // (instID, geomID) of an emitting shape -> offset into areaLightOfPrim_,
+    // which holds the light index of each of its triangles (or kInvalidId).
+    std::unordered_map<uint64_t, uint32_t> emitterOffset_;
+    std::vector<uint32_t> areaLightOfPrim_;
+    bool lightsPrepared_ = false;
 };
 
 }  // namespace strahl

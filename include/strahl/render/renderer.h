@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "strahl/camera/camera.h"
+#include "strahl/core/filter.h"
 #include "strahl/film/film.h"
 #include "strahl/integrator/integrator.h"
 #include "strahl/integrator/world.h"
@@ -26,13 +27,17 @@ struct RenderOptions {
     int spp = 1;
     uint64_t seed = 0;
     PacketMode packets = PacketMode::Auto;
+    PixelFilter filter = PixelFilter::box();  // where samples land around pixel centres
     ProgressReporter* progress = nullptr;
 };
 
 struct RenderStats {
     double seconds = 0.0;
+    double firstTileSeconds = 0.0;  // from the start of renderImage to the first finished tile
     uint64_t cameraRays = 0;
     uint64_t shadowRays = 0;
+    uint64_t bounceRays = 0;  // secondary rays that continue paths
+    uint64_t totalRays() const { return cameraRays + shadowRays + bounceRays; }
     int packetWidth = 1;  // the width actually used
 };
 

@@ -7,6 +7,8 @@
 #include <functional>
 
 #include "strahl/camera/camera.h"
+#include "strahl/core/filter.h"
+#include "strahl/integrator/integrator.h"
 #include "strahl/integrator/world.h"
 #include "strahl/scene/scene_desc.h"
 
@@ -38,6 +40,13 @@ const char* accelName(AccelKind kind);
 Camera buildCamera(const CameraDesc& desc, int width, int height);
 
 // A short human-readable description, e.g. "perspective eye (0,1,4) fov 45".
+// The film's pixel filter.
+PixelFilter buildPixelFilter(const FilmDesc& film);
+
+// The integrator settings of the scene's render block, with the ray cone of
+// the camera's pixels (texture filtering).
+IntegratorOptions buildIntegratorOptions(const SceneDesc& desc, const Camera& camera);
+
 std::string describeCamera(const CameraDesc& desc);
 
 }  // namespace strahl

@@ -17,6 +17,7 @@
 #include "strahl/geometry/parametric_shape.h"
 #include "strahl/geometry/parametric_tessellation.h"
 #include "strahl/geometry/triangle_mesh.h"
+#include "strahl/integrator/material.h"
 
 namespace strahl {
 
@@ -29,6 +30,8 @@ struct CameraDesc {
     float focalDistance = 1.0f;
     std::optional<float> fovYDegrees;  // perspective only; exclusive with window
     std::optional<ImageWindow> window;  // default: fov 45 deg (persp.), [-1,1]^2 (ortho.)
+    float apertureRadius = 0.0f;         // thin lens; 0: pinhole
+    std::optional<float> focusDistance;  // default: the focal distance
 };
 
 // Image size limits, for the scene file and the command line alike: each side
@@ -43,18 +46,30 @@ struct FilmDesc {
     std::vector<std::filesystem::path> outputs;  // resolved against the scene folder
     std::vector<AovKind> aovs;
     bool exrFloat = false;
+    std::string filter = "box";           // PixelFilter::names()
+    std::optional<float> filterRadius;    // default: the filter's own
 };
 
 struct RenderDesc {
-    std::string integrator = "direct";  // eyelight | normal | depth | primid | direct
+    std::string integrator = "direct";  // integratorNames(): eyelight ... direct, ao, path
     int spp = 1;
     uint64_t seed = 0;
+    int maxDepth = 8;            // path
+    bool russianRoulette = true; // path
+    float aoDistance = 0.0f;     // ao (0: a quarter of the scene diagonal)
+    int aoSamples = 1;           // ao
+};
+
+// The texture files of a material, registered with the texture system when
+// the world is built (empty: none).
+struct MaterialTextures {
+    std::filesystem::path color, roughness, metallic, emission, normal;
 };
 
 struct MaterialDesc {
     std::string name;
-    Color diffuse{0.8f};
-    Color emission{0.0f};
+    Material material;  // type and parameters; texture handles not yet set
+    MaterialTextures textures;
     std::string where;
 };
 
@@ -108,14 +123,21 @@ struct GroupDesc {
 // bounds the recursion of everything that walks them.
 inline constexpr int kMaxGroupNesting = 64;
 
-enum class LightType { Point, Directional };
+enum class LightType { Point, Spot, Directional, Environment, Sky };
 
 struct LightDesc {
     LightType type = LightType::Point;
-    Vec3 position{0.0f};                 // point
-    Vec3 direction{0.0f, -1.0f, 0.0f};   // directional: the direction light travels
-    Color intensity{1.0f};               // point: radiant intensity, W/sr per channel
+    Vec3 position{0.0f};                 // point, spot
+    Vec3 direction{0.0f, -1.0f, 0.0f};   // spot axis; directional: the direction light travels
+    Color intensity{1.0f};               // point, spot: radiant intensity, W/sr per channel
     Color irradiance{1.0f};              // directional: W/m^2 on a surface facing it
+    float coneAngle = 30.0f;             // spot: half-angle of the cone, degrees
+    float falloffStart = 25.0f;          // spot: full intensity inside this half-angle, degrees
+    float angularDiameter = 0.0f;        // directional: sun disk, degrees (0: delta)
+    std::filesystem::path file;          // environment: lat-long image (resolved)
+    Color scale{1.0f};                   // environment: multiplies the image
+    float rotation = 0.0f;               // environment: degrees about +y
+    Color radiance{1.0f};                // sky
     std::string where;
 };
 

@@ -1,0 +1,111 @@
+// Unidirectional path tracing with next-event estimation and multiple
+// importance sampling (Veach 1997, ch. 9; pbrt-v4 PathIntegrator::Li).
+//
+// At every non-specular vertex two strategies estimate direct light: a light
+// sample (sampleDirectLight) and the next BSDF-sampled ray, if it happens to
+// reach an emitter. Each is weighted by the power heuristic of its own density
+// against the other's, both as solid-angle densities at the vertex:
+//   light sample:  w = p_light^2 / (p_light^2 + p_bsdf^2)
+//   BSDF hit:      w = p_bsdf^2  / (p_bsdf^2 + p_light^2)
+// with p_light = P(choose light) * pdfLi. Emitters seen by the camera or after
+// a specular bounce have weight 1 (no light sample could have found them), as
+// have emitters that are not light-sampled (textured emission, user shapes).
+//
+// Russian roulette from the second bounce on: continue with probability
+// q = min(1, max(beta * etaScale)), dividing beta by q; etaScale undoes the
+// 1/eta^2 radiance scaling of refraction so paths inside glass are not killed
+// for it (pbrt-v4).
+
+#include "path_integrator.h"
+
+#include <algorithm>
+
+#include "shading_context.h"
+#include "strahl/core/sampling.h"
+
+namespace strahl {
+
+Color PathIntegrator::shade(const World& world, const SurfaceHit& first, Sampler& sampler,
+                            ShadingStats& stats) const {
+    const LightSampling mode = options_.sampling;
+    Color L(0.0f), beta(1.0f);
+    bool specularBounce = false;
+    float etaScale = 1.0f;
+    float prevBsdfPdf = 0.0f;
+    LightSampleContext prevContext;
+    float pathLength = 0.0f;
+
+    Ray ray = first.ray();
+    Hit hit = first.hit();
+    for (int depth = 0;; ++depth) {
+        // The weight of an emitter reached by this ray (BSDF sampling).
+        const auto emitterWeight = [&](const Light* light, const Vec3& dir, const Vec3& pLight) {
+            if (depth == 0 || specularBounce || !light) return 1.0f;
+            if (mode == LightSampling::BsdfOnly) return 1.0f;
+            if (mode == LightSampling::LightOnly) return 0.0f;
+            const uint32_t index = static_cast<uint32_t>(light - world.lightSet.lights().data());
+            const float lightPdf =
+                world.lightSet.pmf(index) * pdfLi(*light, prevContext, dir, pLight);
+            return powerHeuristic(1, prevBsdfPdf, 1, lightPdf);
+        };
+
+        if (!hit.valid()) {
+            const Vec3 dir = glm::normalize(ray.dir);
+            for (uint32_t i : world.lightSet.infiniteLights()) {
+                const Light& light = world.lightSet.lights()[i];
+                const Color Le = infiniteLe(light, dir);
+                if (maxComponent(Le) > 0.0f) L += beta * Le * emitterWeight(&light, dir, Vec3(0.0f));
+            }
+            break;
+        }
+
+        const SurfaceHit surface(world, ray, hit);
+        pathLength += hit.t * glm::length(ray.dir);
+        const float footprint = options_.coneWidth + options_.coneAngle * pathLength;
+        const ShadingContext ctx = makeShadingContext(world, surface, footprint);
+
+        if (ctx.material->emits()) {
+            const Color Le = emittedTowards(world, surface, ctx);
+            if (maxComponent(Le) > 0.0f) {
+                const uint32_t index = world.areaLightOf(hit);
+                const Light* light =
+                    index == kInvalidId ? nullptr : &world.lightSet.lights()[index];
+                L += beta * Le * emitterWeight(light, -ctx.wo, ctx.si->p);
+            }
+        }
+        if (depth >= options_.maxDepth) break;
+
+        if (!ctx.bsdf.isSpecular() && mode != LightSampling::BsdfOnly)
+            L += beta * sampleDirectLight(world, ctx, sampler, mode, stats);
+
+        const float uLobe = sampler.get1D();
+        const std::optional<BsdfSample> bs = ctx.bsdf.sample(ctx.toLocal(ctx.wo), uLobe,
+                                                             sampler.get2D());
+        if (!bs || !(bs->pdf > 0.0f)) break;
+        const Vec3 wi = ctx.toWorld(bs->wi);
+        // Reflection must stay on wo's side of the geometry, transmission cross it.
+        const bool sameSide = glm::dot(wi, ctx.ng) * glm::dot(ctx.wo, ctx.ng) > 0.0f;
+        if (sameSide == bs->transmission) break;
+        beta *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
+        if (!isFinite(beta) || maxComponent(beta) <= 0.0f) break;
+        specularBounce = bs->specular;
+        prevBsdfPdf = bs->pdf;
+        if (bs->transmission) etaScale *= bs->eta * bs->eta;
+        prevContext = ctx.lightContext();
+
+        ray = ctx.spawn(wi);
+        hit = world.accel->intersect(ray);
+        ++stats.bounceRays;
+
+        if (options_.russianRoulette && depth >= 1) {
+            const float q = std::min(1.0f, maxComponent(beta * etaScale));
+            if (q < 1.0f) {
+                if (sampler.get1D() >= q) break;
+                beta /= q;
+            }
+        }
+    }
+    return L;
+}
+
+}  // namespace strahl

@@ -1,0 +1,94 @@
+#include "shading_context.h"
+
+#include "strahl/core/sampling.h"
+
+namespace strahl {
+
+Color ShadingContext::fCos(const Vec3& wi) const {
+    if (bsdf.isOpaque() && glm::dot(wi, ng) <= 0.0f) return Color(0.0f);
+    const Vec3 wiLocal = toLocal(wi);
+    return bsdf.f(toLocal(wo), wiLocal) * std::abs(wiLocal.z);
+}
+
+ShadingContext makeShadingContext(const World& world, const SurfaceHit& hit, float footprint) {
+    ShadingContext ctx;
+    const SurfaceInteraction& si = hit.interaction();
+    ctx.si = &si;
+    ctx.material = &hit.material();
+    ctx.wo = -glm::normalize(hit.ray().dir);
+
+    ShadingPoint& sp = ctx.point;
+    sp.p = si.p;
+    sp.n = si.Ns;
+    sp.dpdu = si.dpdu;
+    sp.uv = si.uv;
+    sp.footprint = footprint * si.uvDensity;
+    const TextureSystem* textures = world.textures.get();
+    const Vec3 ns = shadingNormal(*ctx.material, sp, textures);
+    ctx.bsdf = makeBsdf(*ctx.material, sp, textures);
+
+    Vec3 ng = si.Ng, n = ns;
+    if (glm::dot(n, ng) < 0.0f) n = -n;  // a normal map must not flip the side
+    if (ctx.bsdf.isOpaque()) {
+        if (glm::dot(ng, ctx.wo) < 0.0f) {
+            ng = -ng;
+            n = -n;
+        }
+        // Interpolated or mapped normals can face away from the viewer near
+        // silhouettes; fall back to the geometric normal there.
+        if (glm::dot(n, ctx.wo) <= 0.0f) n = ng;
+    }
+    ctx.ng = ng;
+    ctx.n = n;
+    // The frame's first axis follows dpdu (anisotropy, consistent texture
+    // frames); Gram-Schmidt against n, any basis if dpdu is missing.
+    const Vec3 tangent = si.dpdu - glm::dot(si.dpdu, n) * n;
+    const float len = glm::length(tangent);
+    if (len > 1e-6f * glm::length(si.dpdu) && len > 0.0f) {
+        ctx.s = tangent / len;
+        ctx.t = glm::cross(n, ctx.s);
+    } else {
+        orthonormalBasis(n, ctx.s, ctx.t);
+    }
+    return ctx;
+}
+
+Color emittedTowards(const World& world, const SurfaceHit& hit, const ShadingContext& ctx) {
+    const Material& material = *ctx.material;
+    if (!material.emits()) return Color(0.0f);
+    const uint32_t light = world.areaLightOf(hit.hit());
+    if (light != kInvalidId) return triangleLe(world.lightSet.lights()[light], ctx.wo);
+    // Textured emission or a user shape: the front is the surface's own Ng.
+    if (!material.twoSidedEmission && glm::dot(ctx.si->Ng, ctx.wo) <= 0.0f) return Color(0.0f);
+    return emittedRadiance(material, ctx.point, world.textures.get());
+}
+
+Color estimateLight(const World& world, const ShadingContext& ctx, const Light& light,
+                    const Vec2& u, float selectPdf, LightSampling sampling, ShadingStats& stats) {
+    const std::optional<LightLiSample> ls = sampleLi(light, ctx.lightContext(), u);
+    if (!ls || !(ls->pdf > 0.0f) || maxComponent(ls->L) <= 0.0f) return Color(0.0f);
+    const Color f = ctx.fCos(ls->wi);
+    if (maxComponent(f) <= 0.0f) return Color(0.0f);
+    const SurfaceInteraction& si = *ctx.si;
+    const Ray shadow = ls->atInfinity ? ctx.spawn(ls->wi)
+                                      : spawnRayTo(si.p, si.pError, ctx.ng, ls->pLight);
+    ++stats.shadowRays;
+    if (world.accel->occluded(shadow)) return Color(0.0f);
+    if (light.isDelta()) return f * ls->L / selectPdf;
+    const float lightPdf = ls->pdf * selectPdf;
+    const float weight =
+        sampling == LightSampling::Mis ? powerHeuristic(1, lightPdf, 1, ctx.pdf(ls->wi)) : 1.0f;
+    return f * ls->L * (weight / lightPdf);
+}
+
+Color sampleDirectLight(const World& world, const ShadingContext& ctx, Sampler& sampler,
+                        LightSampling sampling, ShadingStats& stats) {
+    const float uLight = sampler.get1D();
+    const Vec2 u = sampler.get2D();
+    const auto choice = world.lightSet.choose(uLight);
+    if (!choice) return Color(0.0f);
+    return estimateLight(world, ctx, world.lightSet.lights()[choice->first], u, choice->second,
+                         sampling, stats);
+}
+
+}  // namespace strahl

@@ -1,0 +1,58 @@
+#pragma once
+// Internal: everything the lighting integrators (direct, path) need at one
+// surface hit — the interaction, the material's BSDF in a shading frame, the
+// normals oriented for two-sided shading — and next-event estimation, which
+// both integrators share.
+//
+// Orientation: for opaque BSDFs the geometric and shading normals are turned
+// towards wo (two-sided surfaces), so wo is in the local upper hemisphere. A
+// dielectric keeps its normals as the surface defines them (outward): the sign
+// of wo.z tells the BSDF whether the ray arrives from inside.
+
+#include "strahl/core/sampler.h"
+#include "strahl/integrator/integrator.h"
+#include "strahl/integrator/surface_hit.h"
+
+namespace strahl {
+
+struct ShadingContext {
+    const SurfaceInteraction* si = nullptr;
+    const Material* material = nullptr;
+    ShadingPoint point;
+    Vec3 wo{0.0f};  // unit, towards where the ray came from
+    Vec3 ng{0.0f};  // unit geometric normal (oriented, see above)
+    Vec3 s{0.0f}, t{0.0f}, n{0.0f};  // shading frame, n = shading normal
+    Bsdf bsdf;
+
+    Vec3 toLocal(const Vec3& v) const { return Vec3(glm::dot(v, s), glm::dot(v, t), glm::dot(v, n)); }
+    Vec3 toWorld(const Vec3& v) const { return v.x * s + v.y * t + v.z * n; }
+    // BSDF times |cos| for a world-space wi, zero where an opaque surface's
+    // geometry puts wi on the other side than wo (light leaks through
+    // interpolated normals).
+    Color fCos(const Vec3& wi) const;
+    float pdf(const Vec3& wi) const { return bsdf.pdf(toLocal(wo), toLocal(wi)); }
+    // A ray leaving the surface in direction wi, offset past the error bound.
+    Ray spawn(const Vec3& wi) const { return spawnRay(si->p, si->pError, ng, wi); }
+    LightSampleContext lightContext() const {
+        // A transmissive surface receives light from both sides: no normal.
+        return LightSampleContext{si->p, bsdf.isOpaque() ? ng : Vec3(0.0f)};
+    }
+};
+
+// footprint: width of the ray's footprint at the hit, world units.
+ShadingContext makeShadingContext(const World& world, const SurfaceHit& hit, float footprint);
+
+// Emitted radiance towards ctx.wo (zero behind a one-sided emitter).
+Color emittedTowards(const World& world, const SurfaceHit& hit, const ShadingContext& ctx);
+
+// One next-event estimate: picks a light by power, samples it, traces the
+// shadow ray. With MIS the result carries the power-heuristic weight against
+// BSDF sampling (delta lights: weight 1). Always draws one 1D and one 2D value.
+Color sampleDirectLight(const World& world, const ShadingContext& ctx, Sampler& sampler,
+                        LightSampling sampling, ShadingStats& stats);
+// The same for one given light, without light selection (the direct integrator
+// estimates every light).
+Color estimateLight(const World& world, const ShadingContext& ctx, const Light& light,
+                    const Vec2& u, float selectPdf, LightSampling sampling, ShadingStats& stats);
+
+}  // namespace strahl

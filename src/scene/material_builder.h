@@ -1,0 +1,20 @@
+#pragma once
+// Internal to the scene module: turns material descriptions — the scene
+// file's and those of mesh files (OBJ .mtl, glTF) — into the World's
+// materials, registering their textures with the world's texture system
+// (created on the first texture). The mapping of mesh-file materials is
+// documented in docs/materials.md, "Materials from mesh files".
+
+#include <string>
+
+#include "strahl/integrator/world.h"
+#include "strahl/meshio/mesh_file.h"
+#include "strahl/scene/scene_desc.h"
+
+namespace strahl::scene_detail {
+
+// `where` names the material in errors (an unreadable texture).
+Material buildMaterial(const MaterialDesc& desc, World& world);
+Material buildMeshMaterial(const MeshMaterial& mesh, const std::string& name, World& world);
+
+}  // namespace strahl::scene_detail
