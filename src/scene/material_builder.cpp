@@ -116,10 +116,10 @@ Material fromGltf(const MeshMaterial& m, const std::string& name, World& world) 
 
 }  // namespace
 
-Material buildMaterial(const MaterialDesc& desc, World& world) {
+Material buildMaterial(const MaterialDesc& desc, const SceneDesc& scene, World& world) {
     Material mat = desc.material;
     mat.name = desc.name;
-    const std::string where = desc.where;
+    const std::string where = scene.file.filename().string() + ": " + desc.where;
     mat.color.texture = addTexture(world, desc.textures.color, TextureEncoding::Color, where);
     mat.roughness.texture = addTexture(world, desc.textures.roughness, TextureEncoding::Data, where);
     mat.metallic.texture = addTexture(world, desc.textures.metallic, TextureEncoding::Data, where);

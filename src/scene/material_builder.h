@@ -13,8 +13,9 @@
 
 namespace strahl::scene_detail {
 
-// `where` names the material in errors (an unreadable texture).
-Material buildMaterial(const MaterialDesc& desc, World& world);
+// Errors (an unreadable texture) name the scene file and the material's JSON
+// pointer, or for a mesh file's material its name "<shape>/<material>".
+Material buildMaterial(const MaterialDesc& desc, const SceneDesc& scene, World& world);
 Material buildMeshMaterial(const MeshMaterial& mesh, const std::string& name, World& world);
 
 }  // namespace strahl::scene_detail

@@ -181,7 +181,7 @@ World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTiming
     byName["default"] = 0;
     for (const MaterialDesc& m : desc.materials) {
         byName[m.name] = static_cast<uint32_t>(world.materials.size());
-        world.materials.push_back(scene_detail::buildMaterial(m, world));
+        world.materials.push_back(scene_detail::buildMaterial(m, desc, world));
     }
 
     const scene_detail::FlatInstances flat = scene_detail::flattenInstances(desc);

@@ -447,8 +447,12 @@ LightDesc parseLight(const JsonValue& v, const fs::path& folder) {
         if (auto intensity = v.find("intensity")) l.intensity = nonNegative(*intensity);
         if (auto cone = v.find("cone_angle")) l.coneAngle = degreesIn(*cone, 0.01f, 180.0f);
         l.falloffStart = std::min(l.falloffStart, l.coneAngle);
-        if (auto start = v.find("falloff_start"))
-            l.falloffStart = degreesIn(*start, 0.0f, l.coneAngle);
+        if (auto start = v.find("falloff_start")) {
+            l.falloffStart = degreesIn(*start, 0.0f, 180.0f);
+            if (l.falloffStart > l.coneAngle)
+                start->fail("must not exceed cone_angle (", l.coneAngle, " degrees), got ",
+                            l.falloffStart);
+        }
     } else if (type == "directional" || type == "sun") {
         v.requireKeys({"type", "direction", "irradiance", "angular_diameter"});
         l.type = LightType::Directional;

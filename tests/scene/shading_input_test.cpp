@@ -1,0 +1,293 @@
+// Bad input to the shading parts of a scene file — materials, textures,
+// lights, the render and film settings, the thin lens — and the exact message
+// each gives (docs/scene-format.md, "Errors"). Problems the parser can see
+// name the JSON pointer; files that exist but are not images are found when
+// the world is built, and name the material or light and the file; a missing
+// texture in an OBJ's .mtl is only a warning.
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "strahl/core/error.h"
+#include "strahl/meshio/mesh_file.h"
+#include "strahl/scene/scene_builder.h"
+#include "strahl/scene/scene_desc.h"
+#include "test_support.h"
+
+namespace strahl {
+namespace {
+
+namespace fs = std::filesystem;
+using test::contains;
+using test::writeFile;
+
+const std::string kTriangle =
+    R"("shapes": [{"type": "mesh", "positions": [[0,0,0],[1,0,0],[0,1,0]], "indices": [0,1,2]}])";
+
+// The message of parsing a scene made of kTriangle plus `sections`
+// (comma-separated top-level members), labelled "scene.json".
+std::string errorWith(const std::string& sections) {
+    return test::errorMessage(
+        [&] { parseSceneText("{" + sections + ", " + kTriangle + "}", "scene.json"); });
+}
+
+std::string materialError(const std::string& material) {
+    return errorWith(R"("materials": [)" + material + "]");
+}
+
+std::string lightError(const std::string& light) {
+    return errorWith(R"("lights": [)" + light + "]");
+}
+
+// A scene file in `dir` made of kTriangle plus `sections`, parsed with its
+// real path (so relative files resolve against `dir`).
+SceneDesc parseIn(const fs::path& dir, const std::string& sections) {
+    const std::string text = "{" + sections + ", " + kTriangle + "}";
+    writeFile(dir / "scene.json", text);
+    return parseSceneText(text, dir / "scene.json");
+}
+
+// Text that no image reader accepts, saved under an image extension.
+const std::string kNotAnImage = "this is a text file, not an image\n";
+
+// --- materials -----------------------------------------------------------------
+
+TEST(ShadingInput, UnknownMaterialTypeListsTheTypes) {
+    EXPECT_EQ(materialError(R"({"name": "m", "type": "velvet"})"),
+              "scene.json: /materials/0/type: must be one of diffuse, phong, blinn, conductor, "
+              "dielectric, plastic, metallic_roughness, emissive, got 'velvet'");
+}
+
+TEST(ShadingInput, KeyOfAnotherTypeListsTheAllowedKeys) {
+    EXPECT_EQ(materialError(R"({"name": "m", "type": "conductor", "color": [1, 0.8, 0.3]})"),
+              "scene.json: /materials/0: unknown key 'color' for a conductor material (allowed: "
+              "name, type, emission, two_sided, normal_map, mapping, metal, eta, k, roughness)");
+}
+
+TEST(ShadingInput, NegativeColourNamesTheComponent) {
+    EXPECT_EQ(materialError(R"({"name": "m", "color": [0.5, -0.25, 0.5]})"),
+              "scene.json: /materials/0/color/1: must be >= 0, got -0.25");
+}
+
+TEST(ShadingInput, OverflowingNumberIsASyntaxErrorAtTheNumber) {
+    // 1e999 exceeds even a double: the JSON reader reports it where it is.
+    EXPECT_EQ(test::errorMessage([] {
+                  parseSceneText("{\"materials\": [{\"name\": \"m\",\n \"color\": 1e999}], " +
+                                     kTriangle + "}",
+                                 "scene.json");
+              }),
+              "scene.json:2:11: syntax error: number overflow parsing '1e999'");
+}
+
+TEST(ShadingInput, NumberBeyondTheFloatRangeIsRejectedNotInfinite) {
+    // 1e39 is a double but no float: rejected rather than read as inf.
+    EXPECT_EQ(materialError(R"({"name": "m", "emission": [1e39, 1, 1]})"),
+              "scene.json: /materials/0/emission/0: must be a finite number within float "
+              "range, got 1e+39");
+    EXPECT_EQ(materialError(R"({"name": "m", "color": 1e39})"),
+              "scene.json: /materials/0/color: must be a finite number within float range, got "
+              "1e+39");
+}
+
+TEST(ShadingInput, RoughnessAboveOne) {
+    EXPECT_EQ(materialError(R"({"name": "m", "type": "plastic", "roughness": 1.5})"),
+              "scene.json: /materials/0/roughness: must be in [0, 1], got 1.5");
+}
+
+TEST(ShadingInput, IorBelowOne) {
+    EXPECT_EQ(materialError(R"({"name": "m", "type": "dielectric", "ior": 0.5})"),
+              "scene.json: /materials/0/ior: must be in [1.0001, 4], got 0.5");
+}
+
+TEST(ShadingInput, UnknownMetalListsThePresets) {
+    EXPECT_EQ(materialError(R"({"name": "m", "type": "conductor", "metal": "unobtainium"})"),
+              "scene.json: /materials/0/metal: unknown metal 'unobtainium' (known: gold, silver, "
+              "copper, aluminium, chromium, iron, titanium, nickel, platinum)");
+}
+
+TEST(ShadingInput, PhongThatReflectsMoreThanItReceives) {
+    EXPECT_EQ(materialError(R"({"name": "m", "type": "phong", "color": 0.75, "specular": 0.5})"),
+              "scene.json: /materials/0: color + specular must not exceed 1 in any channel "
+              "(energy conservation), got (1.25, 1.25, 1.25)");
+}
+
+TEST(ShadingInput, EmissiveWithoutEmission) {
+    EXPECT_EQ(materialError(R"({"name": "lamp", "type": "emissive"})"),
+              "scene.json: /materials/0: an emissive material needs 'emission'");
+}
+
+// --- textures ------------------------------------------------------------------
+
+TEST(ShadingInput, MissingTextureFileNamesThePointer) {
+    const fs::path dir = test::scratchDir("shading-missing-texture");
+    const std::string message = test::errorMessage([&] {
+        parseIn(dir, R"("materials": [{"name": "m", "color": {"texture": "wood.png"}}])");
+    });
+    EXPECT_EQ(message, (dir / "scene.json").string() +
+                           ": /materials/0/color/texture: no such texture file 'wood.png' "
+                           "(looked at " + (dir / "wood.png").string() + ")");
+}
+
+TEST(ShadingInput, TextureThatIsNotAnImageFailsWhenTheWorldIsBuilt) {
+    const fs::path dir = test::scratchDir("shading-fake-texture");
+    writeFile(dir / "wood.png", kNotAnImage);
+    const SceneDesc desc =
+        parseIn(dir, R"("materials": [{"name": "m", "color": {"texture": "wood.png"}}])");
+    const std::string message = test::errorMessage([&] { buildWorld(desc, BuildOptions{}); });
+    const std::string prefix =
+        "scene.json: /materials/0: " + (dir / "wood.png").string() + ": cannot read the texture: ";
+    EXPECT_EQ(message.substr(0, prefix.size()), prefix) << message;
+    EXPECT_GT(message.size(), prefix.size()) << "OpenImageIO's reason is missing: " << message;
+    EXPECT_FALSE(contains(message, "\n")) << message;
+}
+
+// --- environment light ---------------------------------------------------------
+
+TEST(ShadingInput, MissingEnvironmentFileNamesThePointer) {
+    const fs::path dir = test::scratchDir("shading-missing-environment");
+    const std::string message = test::errorMessage([&] {
+        parseIn(dir, R"("lights": [{"type": "environment", "file": "sky.hdr"}])");
+    });
+    EXPECT_EQ(message, (dir / "scene.json").string() +
+                           ": /lights/0/file: no such image file 'sky.hdr' (looked at " +
+                           (dir / "sky.hdr").string() + ")");
+}
+
+TEST(ShadingInput, EnvironmentThatIsNotAnImageFailsWhenTheWorldIsBuilt) {
+    const fs::path dir = test::scratchDir("shading-fake-environment");
+    writeFile(dir / "sky.hdr", kNotAnImage);
+    const SceneDesc desc =
+        parseIn(dir, R"("lights": [{"type": "environment", "file": "sky.hdr"}])");
+    const std::string message = test::errorMessage([&] { buildWorld(desc, BuildOptions{}); });
+    const std::string prefix = "scene.json: /lights/0: " + (dir / "sky.hdr").string() +
+                               ": cannot read the environment image: ";
+    EXPECT_EQ(message.substr(0, prefix.size()), prefix) << message;
+    EXPECT_GT(message.size(), prefix.size()) << "OpenImageIO's reason is missing: " << message;
+    EXPECT_FALSE(contains(message, "\n")) << message;
+}
+
+TEST(ShadingInput, NegativeEnvironmentScale) {
+    const fs::path dir = test::scratchDir("shading-environment-scale");
+    writeFile(dir / "sky.hdr", kNotAnImage);  // never opened: the parser stops first
+    const std::string message = test::errorMessage([&] {
+        parseIn(dir, R"("lights": [{"type": "environment", "file": "sky.hdr", "scale": -2}])");
+    });
+    EXPECT_EQ(message, (dir / "scene.json").string() + ": /lights/0/scale: must be >= 0, got -2");
+}
+
+// --- spot light ----------------------------------------------------------------
+
+const std::string kSpot = R"("type": "spot", "position": [0, 2, 0], "direction": [0, -1, 0])";
+
+TEST(ShadingInput, SpotFalloffStartBeyondTheCone) {
+    EXPECT_EQ(lightError("{" + kSpot + R"(, "cone_angle": 20, "falloff_start": 25})"),
+              "scene.json: /lights/0/falloff_start: must not exceed cone_angle (20 degrees), "
+              "got 25");
+    // Against the default cone of 30 degrees, which the message names.
+    EXPECT_EQ(lightError("{" + kSpot + R"(, "falloff_start": 40})"),
+              "scene.json: /lights/0/falloff_start: must not exceed cone_angle (30 degrees), "
+              "got 40");
+}
+
+TEST(ShadingInput, SpotConeAngleZero) {
+    EXPECT_EQ(lightError("{" + kSpot + R"(, "cone_angle": 0})"),
+              "scene.json: /lights/0/cone_angle: must be in [0.01, 180] degrees, got 0");
+}
+
+TEST(ShadingInput, SpotWithBothDirectionAndLookAt) {
+    EXPECT_EQ(lightError("{" + kSpot + R"(, "look_at": [0, 0, 0]})"),
+              "scene.json: /lights/0: give exactly one of 'direction' and 'look_at'");
+}
+
+// --- render --------------------------------------------------------------------
+
+TEST(ShadingInput, MaxDepthNegative) {
+    EXPECT_EQ(errorWith(R"("render": {"integrator": "path", "max_depth": -1})"),
+              "scene.json: /render/max_depth: must be between 0 and 1024, got -1");
+}
+
+TEST(ShadingInput, MaxDepthTooLarge) {
+    EXPECT_EQ(errorWith(R"("render": {"integrator": "path", "max_depth": 2000})"),
+              "scene.json: /render/max_depth: must be between 0 and 1024, got 2000");
+}
+
+TEST(ShadingInput, AoSamplesZero) {
+    EXPECT_EQ(errorWith(R"("render": {"integrator": "ao", "ao_samples": 0})"),
+              "scene.json: /render/ao_samples: must be between 1 and 4096, got 0");
+}
+
+// --- film filter ---------------------------------------------------------------
+
+TEST(ShadingInput, UnknownFilterListsTheFilters) {
+    EXPECT_EQ(errorWith(R"("film": {"filter": "mitchell"})"),
+              "scene.json: /film/filter: must be one of box, gaussian, blackman-harris, got "
+              "'mitchell'");
+    EXPECT_EQ(errorWith(R"("film": {"filter": {"type": "mitchell", "radius": 2}})"),
+              "scene.json: /film/filter/type: must be one of box, gaussian, blackman-harris, got "
+              "'mitchell'");
+}
+
+TEST(ShadingInput, FilterRadiusZero) {
+    EXPECT_EQ(errorWith(R"("film": {"filter": {"type": "gaussian", "radius": 0}})"),
+              "scene.json: /film/filter/radius: must be greater than 0 and at most 16 pixels, "
+              "got 0");
+}
+
+// --- camera --------------------------------------------------------------------
+
+TEST(ShadingInput, NegativeApertureRadius) {
+    EXPECT_EQ(errorWith(R"("camera": {"aperture_radius": -1})"),
+              "scene.json: /camera/aperture_radius: must be at least 0, got -1");
+}
+
+TEST(ShadingInput, FocusDistanceZero) {
+    EXPECT_EQ(errorWith(R"("camera": {"aperture_radius": 0.1, "focus_distance": 0})"),
+              "scene.json: /camera/focus_distance: must be greater than 0, got 0");
+}
+
+// --- OBJ materials -------------------------------------------------------------
+
+// Collects mesh-loader warnings for the lifetime of the object.
+class WarningCapture {
+public:
+    WarningCapture() {
+        setMeshWarningHandler([this](const std::string& m) { messages_.push_back(m); });
+    }
+    ~WarningCapture() { setMeshWarningHandler(nullptr); }
+    WarningCapture(const WarningCapture&) = delete;
+    WarningCapture& operator=(const WarningCapture&) = delete;
+    const std::vector<std::string>& messages() const { return messages_; }
+
+private:
+    std::vector<std::string> messages_;
+};
+
+TEST(ShadingInput, MissingMtlTextureIsAWarningAndKeepsTheConstantColour) {
+    const fs::path dir = test::scratchDir("shading-mtl-texture");
+    writeFile(dir / "tri.mtl", "newmtl red\nKd 0.6 0.1 0.1\nmap_Kd missing.png\n");
+    writeFile(dir / "tri.obj",
+              "mtllib tri.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n");
+    const std::string text = R"({"shapes": [{"type": "mesh", "file": "tri.obj"}]})";
+    writeFile(dir / "scene.json", text);
+    const SceneDesc desc = parseSceneText(text, dir / "scene.json");
+
+    WarningCapture warnings;
+    const World world = buildWorld(desc, BuildOptions{});
+    ASSERT_EQ(warnings.messages().size(), 1u);
+    EXPECT_EQ(warnings.messages()[0], (dir / "tri.mtl").string() +
+                                          ":3: texture 'missing.png' not found; material 'red' "
+                                          "gets no diffuse texture");
+
+    // The material table: the built-in default, then the OBJ's "red".
+    ASSERT_EQ(world.materials.size(), 2u);
+    const Material& red = world.materials[1];
+    EXPECT_EQ(red.name, "tri/red");
+    EXPECT_EQ(red.type, Material::Type::Diffuse);
+    EXPECT_FALSE(red.color.texture.valid());
+    EXPECT_EQ(red.color.value, Color(0.6f, 0.1f, 0.1f));
+}
+
+}  // namespace
+}  // namespace strahl
