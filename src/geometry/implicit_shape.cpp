@@ -174,6 +174,24 @@ SurfaceInteraction ImplicitShape::interaction(const Ray& ray, const Hit& hit) co
     const Vec3 absTd = glm::abs(hit.t * ray.dir);
     si.pError = gammaBound(3) * (glm::abs(ray.origin) + absTd) +
                 glm::abs(ray.dir) * (hit.u + gammaBound(1) * std::abs(hit.t));
+    if (!closedForm_) {
+        // The root finder's resolution, which tError does not carry (a refined
+        // root's is ~1e-15): findFirstRoot() reports as a hit any segment of
+        // width <= tolerance_/‖d‖ that interval arithmetic cannot clear of the
+        // surface (that is how tangent hits are kept), so a ray spawned closer
+        // than tolerance_ to the surface can find it again at t ≈ 0 — and not
+        // only at grazing angles, as interval bounds are loose. The box must
+        // reach tolerance_ (object space) from p along the normal. tolerance_
+        // per object axis mapped by |L| (L: objectToWorld's linear part) does:
+        // with n the unit object normal and m = L⁻ᵀn/‖L⁻ᵀn‖ the world one, the
+        // box's support along m is Σᵢ|mᵢ|(|L|·τ)ᵢ >= τ·|mᵀLn| = τ/‖L⁻ᵀn‖ (as
+        // |nⱼ| <= 1), and a world step s·m moves the object point s·‖L⁻ᵀn‖
+        // along n: at least τ. Summed in double, rounded up to float. (Closed
+        // forms have no resolution limit: their tError is the whole error.)
+        const glm::dmat3& L = toWorldLinear_;
+        const glm::dmat3 absL(glm::abs(L[0]), glm::abs(L[1]), glm::abs(L[2]));
+        si.pError = roundUp(DVec3(si.pError) + absL * DVec3(tolerance_));
+    }
     const float len = glm::length(hit.Ng);
     si.Ng = len > 0.0f ? hit.Ng / len : -glm::normalize(ray.dir);
     si.Ns = si.Ng;

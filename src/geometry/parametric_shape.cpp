@@ -330,16 +330,29 @@ SurfaceInteraction ParametricShape::interaction(const Ray& ray, const Hit& hit) 
 
     SurfaceInteraction si;
     si.p = Vec3(pWorld);
-    // Error of p: the root's tolerance, the float rounding of the stored local
+    // Error of p: the solver's tolerance, the float rounding of the stored local
     // (u, v) (half an ulp of a number in [0, 1], times the sub-patch's size and
     // the partials), both mapped by the transform, plus the rounding of p to
     // float and of the transform (gamma(3) of its magnitude).
+    //
+    // The tolerance is not an error of f(u, v) itself but the solver's
+    // resolution, and secondary rays need it: Newton accepts a root once
+    // ‖o + t·d − f(u, v)‖ <= tolerance_, so a ray spawned closer than that to
+    // the surface can be accepted as hitting it again at t ≈ 0. The box must
+    // therefore reach tolerance_ (object space) from p along the normal.
+    // tolerance_ per object axis does, through the map: with L the linear part,
+    // n the unit object normal and m = L⁻ᵀn/‖L⁻ᵀn‖ the unit world normal, the
+    // world box e = |L|·(τ, τ, τ) has support along m of Σᵢ|mᵢ|eᵢ >= τ·|mᵀLn|
+    // = τ/‖L⁻ᵀn‖ (as |nⱼ| <= 1), and a world step s·m moves the object point by
+    // s·nᵀL⁻¹m = s·‖L⁻ᵀn‖ along n: at least τ. Summed in double and rounded up
+    // so the float box is no smaller.
     const double paramError = 0x1p-24 * (glm::length(s.dpdu) * (cell.u1 - cell.u0) +
                                          glm::length(s.dpdv) * (cell.v1 - cell.v0));
     const glm::dmat3 linear(toWorld_);
     const glm::dmat3 absLinear(glm::abs(linear[0]), glm::abs(linear[1]), glm::abs(linear[2]));
     const DVec3 objectError(tolerance_ + paramError);
-    si.pError = Vec3(absLinear * objectError) + gammaBound(3) * glm::abs(si.p);
+    si.pError = roundUp(absLinear * objectError +
+                        static_cast<double>(gammaBound(3)) * glm::abs(DVec3(si.p)));
     // intersect() already mapped the exact normal at this root into hit.Ng.
     const float len = glm::length(hit.Ng);
     si.Ng = len > 0.0f && std::isfinite(len) ? hit.Ng / len : -glm::normalize(ray.dir);
@@ -347,6 +360,17 @@ SurfaceInteraction ParametricShape::interaction(const Ray& ray, const Hit& hit) 
     const ParamDomain& dom = surface_->domain();
     si.uv = Vec2(static_cast<float>((params.x - dom.u0) / dom.width()),
                  static_cast<float>((params.y - dom.v0) / dom.height()));
+    // The texture frame of that uv (the surface's (u, v) normalised over the
+    // domain, so a periodic texture wraps exactly at a periodic seam): by the
+    // chain rule ∂p/∂uv.x = width · ∂u f and ∂p/∂uv.y = height · ∂v f, mapped to
+    // world space by the linear part like any tangent. uvDensity converts world
+    // lengths to uv lengths: 1 / sqrt(world area per unit uv area).
+    const DVec3 dpds = linear * (dom.width() * s.dpdu);
+    const DVec3 dpdt = linear * (dom.height() * s.dpdv);
+    if (isFiniteD(dpds)) si.dpdu = Vec3(dpds);
+    const double area = glm::length(glm::cross(dpds, dpdt));
+    // Zero area (a pole, where ∂φ f vanishes) or overflow: density unknown.
+    if (area > 0.0 && std::isfinite(area)) si.uvDensity = static_cast<float>(1.0 / std::sqrt(area));
     si.materialSlot = 0;
     return si;
 }
