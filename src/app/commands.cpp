@@ -220,7 +220,14 @@ int runInfo(const Options& o) {
     std::printf("\n");
     std::printf("user prims %zu\n", world.userPrimitiveCount());
     std::printf("materials  %zu\n", world.materials.size());
-    std::printf("lights     %zu\n", world.lights.size());
+    // Every light the integrators sample: the scene's lights, one triangle
+    // light per emissive triangle, and the background's sky.
+    size_t areaLights = 0;
+    for (const Light& light : world.lightSet.lights())
+        if (light.type == Light::Type::Triangle) ++areaLights;
+    const size_t sky = world.lightSet.lights().size() - world.lights.size() - areaLights;
+    std::printf("lights     %zu (%zu from the scene file, %zu emissive triangles, %zu background sky)\n",
+                world.lightSet.lights().size(), world.lights.size(), areaLights, sky);
     std::printf("bounds     (%g, %g, %g) - (%g, %g, %g)\n", b.min.x, b.min.y, b.min.z, b.max.x,
                 b.max.y, b.max.z);
     std::printf("memory     shapes %.1f MiB, bvh %.1f MiB\n",

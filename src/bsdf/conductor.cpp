@@ -2,6 +2,7 @@
 // complex Fresnel; a perfect mirror below GgxDistribution::kSmoothAlpha.
 // Derivations in docs/materials.md, "Conductor".
 
+#include "lobe_sampling.h"
 #include "strahl/bsdf/bsdf_models.h"
 #include "strahl/bsdf/fresnel.h"
 #include "strahl/bsdf/local_frame.h"
@@ -25,8 +26,8 @@ float ConductorModel::pdf(const Vec3& wo, const Vec3& wi) const {
 
 std::optional<BsdfSample> ConductorModel::sample(const Vec3& wo, float, const Vec2& u) const {
     if (wo.z <= 0.0f) return std::nullopt;
-    BsdfSample s;
     if (ggx.smooth()) {
+        BsdfSample s;
         s.wi = reflectZ(wo);
         s.f = fresnelConductor(wo.z, eta, k) / s.wi.z;
         s.pdf = 1.0f;
@@ -35,12 +36,7 @@ std::optional<BsdfSample> ConductorModel::sample(const Vec3& wo, float, const Ve
     }
     const Vec3 m = ggx.sampleVisibleNormal(wo, u);
     if (glm::dot(wo, m) <= 0.0f) return std::nullopt;
-    s.wi = reflectDir(wo, m);
-    if (s.wi.z <= 0.0f) return std::nullopt;  // reflected below the macro surface
-    s.pdf = pdf(wo, s.wi);
-    if (!(s.pdf > 0.0f)) return std::nullopt;
-    s.f = f(wo, s.wi);
-    return s;
+    return completeSample(*this, wo, reflectDir(wo, m));  // none below the macro surface
 }
 
 }  // namespace strahl::bsdf_models

@@ -6,21 +6,12 @@
 // dielectric exactly lossless and the whole BSDF energy conserving. Derivation
 // in docs/materials.md, "Metallic-roughness".
 
+#include "lobe_sampling.h"
 #include "strahl/bsdf/bsdf_models.h"
 #include "strahl/bsdf/fresnel.h"
 #include "strahl/bsdf/ggx_albedo.h"
-#include "strahl/bsdf/local_frame.h"
-#include "strahl/core/sampling.h"
 
 namespace strahl::bsdf_models {
-
-namespace {
-
-float mean(const Color& c) {
-    return (c.r + c.g + c.b) / 3.0f;
-}
-
-}  // namespace
 
 Color MetallicRoughnessModel::specularFresnel(float cosThetaH) const {
     const Color f0 = glm::mix(Color(f0Dielectric), base, metallic);
@@ -64,39 +55,14 @@ Color MetallicRoughnessModel::f(const Vec3& wo, const Vec3& wi) const {
 
 float MetallicRoughnessModel::pdf(const Vec3& wo, const Vec3& wi) const {
     if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
-    const float ps = specularProbability(wo);
-    float result = (1.0f - ps) * cosineHemispherePdf(wi.z);
-    if (!ggx.smooth()) {
-        const Vec3 m = glm::normalize(wo + wi);
-        result += ps * ggx.visibleD(wo, m) / (4.0f * glm::dot(wo, m));
-    }
-    return result;
+    return ggxOrDiffusePdf(ggx, specularProbability(wo), wo, wi);
 }
 
 std::optional<BsdfSample> MetallicRoughnessModel::sample(const Vec3& wo, float uLobe,
                                                          const Vec2& u) const {
     if (wo.z <= 0.0f) return std::nullopt;
-    const float ps = specularProbability(wo);
-    BsdfSample s;
-    if (uLobe < ps) {
-        if (ggx.smooth()) {
-            s.wi = reflectZ(wo);
-            s.f = specularFresnel(wo.z) / s.wi.z;
-            s.pdf = ps;
-            s.specular = true;
-            return s;
-        }
-        const Vec3 m = ggx.sampleVisibleNormal(wo, u);
-        if (glm::dot(wo, m) <= 0.0f) return std::nullopt;
-        s.wi = reflectDir(wo, m);
-    } else {
-        s.wi = sampleCosineHemisphere(u);
-    }
-    if (s.wi.z <= 0.0f) return std::nullopt;
-    s.pdf = pdf(wo, s.wi);
-    if (!(s.pdf > 0.0f)) return std::nullopt;
-    s.f = f(wo, s.wi);
-    return s;
+    return sampleGgxOrDiffuse(
+        *this, ggx, specularProbability(wo), [&] { return specularFresnel(wo.z); }, wo, uLobe, u);
 }
 
 }  // namespace strahl::bsdf_models

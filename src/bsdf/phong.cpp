@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "lobe_sampling.h"
 #include "strahl/bsdf/bsdf_models.h"
 #include "strahl/bsdf/local_frame.h"
 #include "strahl/core/sampling.h"
@@ -11,10 +12,6 @@
 namespace strahl::bsdf_models {
 
 namespace {
-
-float mean(const Color& c) {
-    return (c.r + c.g + c.b) / 3.0f;
-}
 
 // The unit vector at polar angle acos(cosTheta) and azimuth 2 pi v around axis.
 Vec3 aroundAxis(const Vec3& axis, float cosTheta, float v) {
@@ -101,7 +98,7 @@ float PhongModel::pdf(const Vec3& wo, const Vec3& wi) const {
 
 std::optional<BsdfSample> PhongModel::sample(const Vec3& wo, float uLobe, const Vec2& u) const {
     if (wo.z <= 0.0f || maxComponent(kd) + maxComponent(ks) <= 0.0f) return std::nullopt;
-    BsdfSample s;
+    Vec3 wi;
     if (uLobe < specularProbability()) {
         // Both lobes invert cos^n: the CDF of cos theta under (n + 1) cos^n theta
         // sin theta is cos^(n+1) theta, so cos theta = u^(1 / (n + 1)).
@@ -109,18 +106,14 @@ std::optional<BsdfSample> PhongModel::sample(const Vec3& wo, float uLobe, const 
         if (blinn) {
             const Vec3 h = aroundAxis(Vec3(0.0f, 0.0f, 1.0f), cosTheta, u.y);
             if (glm::dot(wo, h) <= 0.0f) return std::nullopt;
-            s.wi = reflectDir(wo, h);
+            wi = reflectDir(wo, h);
         } else {
-            s.wi = aroundAxis(reflectZ(wo), cosTheta, u.y);
+            wi = aroundAxis(reflectZ(wo), cosTheta, u.y);
         }
     } else {
-        s.wi = sampleCosineHemisphere(u);
+        wi = sampleCosineHemisphere(u);
     }
-    if (s.wi.z <= 0.0f) return std::nullopt;
-    s.pdf = pdf(wo, s.wi);
-    if (!(s.pdf > 0.0f)) return std::nullopt;
-    s.f = f(wo, s.wi);
-    return s;
+    return completeSample(*this, wo, wi);
 }
 
 }  // namespace strahl::bsdf_models

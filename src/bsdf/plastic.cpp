@@ -3,20 +3,11 @@
 // light bouncing between base and coat (Mitsuba's "plastic"); derivation in
 // docs/materials.md, "Plastic".
 
+#include "lobe_sampling.h"
 #include "strahl/bsdf/bsdf_models.h"
 #include "strahl/bsdf/fresnel.h"
-#include "strahl/bsdf/local_frame.h"
-#include "strahl/core/sampling.h"
 
 namespace strahl::bsdf_models {
-
-namespace {
-
-float mean(const Color& c) {
-    return (c.r + c.g + c.b) / 3.0f;
-}
-
-}  // namespace
 
 float PlasticModel::specularProbability(float fresnelO) const {
     // Lobe weights: the coat's reflectance F(wo) against the diffuse albedo
@@ -51,39 +42,14 @@ Color PlasticModel::f(const Vec3& wo, const Vec3& wi) const {
 
 float PlasticModel::pdf(const Vec3& wo, const Vec3& wi) const {
     if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
-    const float ps = specularProbability(fresnelDielectric(wo.z, eta));
-    float result = (1.0f - ps) * cosineHemispherePdf(wi.z);
-    if (!ggx.smooth()) {
-        const Vec3 m = glm::normalize(wo + wi);
-        result += ps * ggx.visibleD(wo, m) / (4.0f * glm::dot(wo, m));
-    }
-    return result;
+    return ggxOrDiffusePdf(ggx, specularProbability(fresnelDielectric(wo.z, eta)), wo, wi);
 }
 
 std::optional<BsdfSample> PlasticModel::sample(const Vec3& wo, float uLobe, const Vec2& u) const {
     if (wo.z <= 0.0f) return std::nullopt;
     const float fresnelO = fresnelDielectric(wo.z, eta);
-    const float ps = specularProbability(fresnelO);
-    BsdfSample s;
-    if (uLobe < ps) {
-        if (ggx.smooth()) {
-            s.wi = reflectZ(wo);
-            s.f = Color(fresnelO / s.wi.z);
-            s.pdf = ps;
-            s.specular = true;
-            return s;
-        }
-        const Vec3 m = ggx.sampleVisibleNormal(wo, u);
-        if (glm::dot(wo, m) <= 0.0f) return std::nullopt;
-        s.wi = reflectDir(wo, m);
-    } else {
-        s.wi = sampleCosineHemisphere(u);
-    }
-    if (s.wi.z <= 0.0f) return std::nullopt;
-    s.pdf = pdf(wo, s.wi);
-    if (!(s.pdf > 0.0f)) return std::nullopt;
-    s.f = f(wo, s.wi);
-    return s;
+    return sampleGgxOrDiffuse(
+        *this, ggx, specularProbability(fresnelO), [&] { return fresnelO; }, wo, uLobe, u);
 }
 
 }  // namespace strahl::bsdf_models

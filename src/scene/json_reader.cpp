@@ -164,6 +164,13 @@ float JsonValue::number() const {
     return f;
 }
 
+float JsonValue::numberIn(float lo, float hi, std::string_view unit) const {
+    const float x = number();
+    if (!(x >= lo && x <= hi))
+        fail("must be in [", lo, ", ", hi, "]", unit.empty() ? "" : " ", unit, ", got ", x);
+    return x;
+}
+
 // lo and hi are within +-2^53, so they convert to double exactly.
 int64_t JsonValue::integer(int64_t lo, int64_t hi) const {
     if (!value_->is_number()) fail("expected an integer, got ", describe());

@@ -63,6 +63,9 @@ public:
     }
     // A number whose value is finite as a float.
     float number() const;
+    // A number() in [lo, hi]; throws "must be in [lo, hi], got x", or with a
+    // unit "must be in [lo, hi] <unit>, got x".
+    float numberIn(float lo, float hi, std::string_view unit = {}) const;
     // An integer (an integral number such as 2 or 2.0) in [lo, hi].
     int64_t integer(int64_t lo, int64_t hi) const;
     // A non-negative integer no larger than `hi`.

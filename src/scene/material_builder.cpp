@@ -21,6 +21,17 @@ TextureHandle addTexture(World& world, const fs::path& file, TextureEncoding enc
     }
 }
 
+// What OBJ and glTF materials map alike: the emission (clamped at 0) with its
+// texture, and the normal map; both call it after adding their other textures.
+void setEmissionAndNormalMap(const MeshMaterial& m, const std::string& name, World& world,
+                             Material& mat) {
+    mat.emission.value = glm::max(m.emission, Color(0.0f));
+    if (!m.emissionTexture.empty())
+        mat.emission.texture = addTexture(world, m.emissionTexture, TextureEncoding::Color, name);
+    if (!m.normalTexture.empty())
+        mat.normalMap = addTexture(world, m.normalTexture, TextureEncoding::Data, name);
+}
+
 // OBJ's Phong exponent Ns runs 0..1000; the (Blinn-)Phong lobes need >= 0.
 constexpr float kMaxObjExponent = 1e4f;
 
@@ -72,11 +83,7 @@ Material fromObj(const MeshMaterial& m, const std::string& name, World& world) {
         mat.color.value = Color(1.0f);
         if (mat.type == Material::Type::Phong) mat.color.value = Color(1.0f) - mat.specular;
     }
-    mat.emission.value = glm::max(m.emission, Color(0.0f));
-    if (!m.emissionTexture.empty())
-        mat.emission.texture = addTexture(world, m.emissionTexture, TextureEncoding::Color, name);
-    if (!m.normalTexture.empty())
-        mat.normalMap = addTexture(world, m.normalTexture, TextureEncoding::Data, name);
+    setEmissionAndNormalMap(m, name, world, mat);
     return mat;
 }
 
@@ -106,11 +113,7 @@ Material fromGltf(const MeshMaterial& m, const std::string& name, World& world) 
             mat.roughness.texture = mr;
         }
     }
-    mat.emission.value = glm::max(m.emission, Color(0.0f));
-    if (!m.emissionTexture.empty())
-        mat.emission.texture = addTexture(world, m.emissionTexture, TextureEncoding::Color, name);
-    if (!m.normalTexture.empty())
-        mat.normalMap = addTexture(world, m.normalTexture, TextureEncoding::Data, name);
+    setEmissionAndNormalMap(m, name, world, mat);
     return mat;
 }
 

@@ -65,19 +65,6 @@ fs::path textureFile(const JsonValue& v, const fs::path& folder) {
     return path;
 }
 
-Color nonNegativeColor(const JsonValue& v) {
-    const Color c = v.color();
-    if (!(c.x >= 0.0f && c.y >= 0.0f && c.z >= 0.0f))
-        v.fail("must be non-negative, got (", c.x, ", ", c.y, ", ", c.z, ")");
-    return c;
-}
-
-float numberIn(const JsonValue& v, float lo, float hi) {
-    const float x = v.number();
-    if (!(x >= lo && x <= hi)) v.fail("must be in [", lo, ", ", hi, "], got ", x);
-    return x;
-}
-
 // A colour given as a number, [r, g, b], or {"texture": file, "scale": colour}.
 void parseTexturedColor(const JsonValue& v, const fs::path& folder, TexturedColor& out,
                         fs::path& texture) {
@@ -85,10 +72,10 @@ void parseTexturedColor(const JsonValue& v, const fs::path& folder, TexturedColo
         v.requireKeys({"texture", "scale"});
         texture = textureFile(v.get("texture"), folder);
         out.value = Color(1.0f);
-        if (auto scale = v.find("scale")) out.value = nonNegativeColor(*scale);
+        if (auto scale = v.find("scale")) out.value = scale->color();
         return;
     }
-    out.value = nonNegativeColor(v);
+    out.value = v.color();
 }
 
 // A scalar in [lo, hi] given as a number or {"texture": file, "channel": "g", "scale": x}.
@@ -98,14 +85,14 @@ void parseTexturedFloat(const JsonValue& v, const fs::path& folder, float lo, fl
         v.requireKeys({"texture", "channel", "scale"});
         texture = textureFile(v.get("texture"), folder);
         out.value = 1.0f;
-        if (auto scale = v.find("scale")) out.value = numberIn(*scale, lo, hi);
+        if (auto scale = v.find("scale")) out.value = scale->numberIn(lo, hi);
         if (auto channel = v.find("channel")) {
             const std::string c = channel->oneOf({"r", "g", "b", "a"});
             out.channel = c == "r" ? 0 : c == "g" ? 1 : c == "b" ? 2 : 3;
         }
         return;
     }
-    out.value = numberIn(v, lo, hi);
+    out.value = v.numberIn(lo, hi);
 }
 
 TextureMapping parseMapping(const JsonValue& v) {
@@ -124,7 +111,7 @@ TextureMapping parseMapping(const JsonValue& v) {
         if (!(mapping.scale > 0.0f)) scale->fail("must be positive, got ", mapping.scale);
     }
     // Beyond 64 the blend is a hard switch between projections anyway.
-    if (auto sharpness = v.find("sharpness")) mapping.sharpness = numberIn(*sharpness, 1.0f, 64.0f);
+    if (auto sharpness = v.find("sharpness")) mapping.sharpness = sharpness->numberIn(1.0f, 64.0f);
     return mapping;
 }
 
@@ -146,7 +133,7 @@ MaterialDesc parseMaterial(const JsonValue& m, const fs::path& folder) {
     if (mat.type == Material::Type::Dielectric && !m.has("color")) mat.color.value = Color(1.0f);
     if (mat.type == Material::Type::MetallicRoughness && !m.has("color"))
         mat.color.value = Color(1.0f);
-    if (auto specular = m.find("specular")) mat.specular = nonNegativeColor(*specular);
+    if (auto specular = m.find("specular")) mat.specular = specular->color();
     if (mat.type == Material::Type::Phong || mat.type == Material::Type::BlinnPhong) {
         if (!m.has("specular")) mat.specular = Color(0.2f);
         // Energy conservation of the (Blinn-)Phong sum needs kd + ks <= 1.
@@ -155,7 +142,7 @@ MaterialDesc parseMaterial(const JsonValue& m, const fs::path& folder) {
             m.fail("color + specular must not exceed 1 in any channel (energy conservation), got (",
                    sum.x, ", ", sum.y, ", ", sum.z, ")");
         // 10^4 is a mirror-like lobe; beyond it use a conductor.
-        if (auto exponent = m.find("exponent")) mat.exponent = numberIn(*exponent, 0.0f, 1e4f);
+        if (auto exponent = m.find("exponent")) mat.exponent = exponent->numberIn(0.0f, 1e4f);
     }
     if (mat.type == Material::Type::Conductor) {
         const bool preset = m.has("metal");
@@ -177,13 +164,13 @@ MaterialDesc parseMaterial(const JsonValue& m, const fs::path& folder) {
             const MetalPreset aluminium = *findMetalPreset("aluminium");
             mat.eta = aluminium.eta;
             mat.k = aluminium.k;
-            if (auto eta = m.find("eta")) mat.eta = nonNegativeColor(*eta);
-            if (auto k = m.find("k")) mat.k = nonNegativeColor(*k);
+            if (auto eta = m.find("eta")) mat.eta = eta->color();
+            if (auto k = m.find("k")) mat.k = k->color();
         }
     }
     if (auto ior = m.find("ior")) {
         // Below 1.0001 the interface vanishes; above 4 no common material.
-        mat.ior = numberIn(*ior, 1.0001f, 4.0f);
+        mat.ior = ior->numberIn(1.0001f, 4.0f);
     }
     if (auto roughness = m.find("roughness"))
         parseTexturedFloat(*roughness, folder, 0.0f, 1.0f, mat.roughness, tex.roughness);

@@ -408,19 +408,6 @@ Vec3 nonZeroDirection(const JsonValue& v) {
     return unitVector(d);
 }
 
-Color nonNegative(const JsonValue& v) {
-    const Color c = v.color();
-    if (!(c.x >= 0.0f && c.y >= 0.0f && c.z >= 0.0f))
-        v.fail("must be non-negative, got (", c.x, ", ", c.y, ", ", c.z, ")");
-    return c;
-}
-
-float degreesIn(const JsonValue& v, float lo, float hi) {
-    const float x = v.number();
-    if (!(x >= lo && x <= hi)) v.fail("must be in [", lo, ", ", hi, "] degrees, got ", x);
-    return x;
-}
-
 LightDesc parseLight(const JsonValue& v, const fs::path& folder) {
     LightDesc l;
     l.where = v.pointer();
@@ -430,7 +417,7 @@ LightDesc parseLight(const JsonValue& v, const fs::path& folder) {
         v.requireKeys({"type", "position", "intensity"});
         l.type = LightType::Point;
         l.position = v.get("position").vec3();
-        if (auto intensity = v.find("intensity")) l.intensity = nonNegative(*intensity);
+        if (auto intensity = v.find("intensity")) l.intensity = intensity->color();
     } else if (type == "spot") {
         v.requireKeys({"type", "position", "direction", "look_at", "intensity", "cone_angle",
                        "falloff_start"});
@@ -444,11 +431,12 @@ LightDesc parseLight(const JsonValue& v, const fs::path& folder) {
             if (d == Vec3(0.0f)) target->fail("must differ from the position");
             l.direction = unitVector(d);
         }
-        if (auto intensity = v.find("intensity")) l.intensity = nonNegative(*intensity);
-        if (auto cone = v.find("cone_angle")) l.coneAngle = degreesIn(*cone, 0.01f, 180.0f);
+        if (auto intensity = v.find("intensity")) l.intensity = intensity->color();
+        if (auto cone = v.find("cone_angle"))
+            l.coneAngle = cone->numberIn(0.01f, 180.0f, "degrees");
         l.falloffStart = std::min(l.falloffStart, l.coneAngle);
         if (auto start = v.find("falloff_start")) {
-            l.falloffStart = degreesIn(*start, 0.0f, 180.0f);
+            l.falloffStart = start->numberIn(0.0f, 180.0f, "degrees");
             if (l.falloffStart > l.coneAngle)
                 start->fail("must not exceed cone_angle (", l.coneAngle, " degrees), got ",
                             l.falloffStart);
@@ -457,11 +445,11 @@ LightDesc parseLight(const JsonValue& v, const fs::path& folder) {
         v.requireKeys({"type", "direction", "irradiance", "angular_diameter"});
         l.type = LightType::Directional;
         l.direction = nonZeroDirection(v.get("direction"));
-        if (auto irradiance = v.find("irradiance")) l.irradiance = nonNegative(*irradiance);
+        if (auto irradiance = v.find("irradiance")) l.irradiance = irradiance->color();
         // The sun seen from the earth is 0.53 degrees across.
         if (type == "sun") l.angularDiameter = 0.53f;
         if (auto diameter = v.find("angular_diameter"))
-            l.angularDiameter = degreesIn(*diameter, 0.0f, 90.0f);
+            l.angularDiameter = diameter->numberIn(0.0f, 90.0f, "degrees");
     } else if (type == "environment") {
         v.requireKeys({"type", "file", "scale", "rotation"});
         l.type = LightType::Environment;
@@ -470,12 +458,13 @@ LightDesc parseLight(const JsonValue& v, const fs::path& folder) {
         std::error_code ec;
         if (!fs::is_regular_file(l.file, ec))
             file.fail("no such image file '", file.string(), "' (looked at ", l.file.string(), ")");
-        if (auto scale = v.find("scale")) l.scale = nonNegative(*scale);
-        if (auto rotation = v.find("rotation")) l.rotation = degreesIn(*rotation, -360.0f, 360.0f);
+        if (auto scale = v.find("scale")) l.scale = scale->color();
+        if (auto rotation = v.find("rotation"))
+            l.rotation = rotation->numberIn(-360.0f, 360.0f, "degrees");
     } else {
         v.requireKeys({"type", "radiance"});
         l.type = LightType::Sky;
-        if (auto radiance = v.find("radiance")) l.radiance = nonNegative(*radiance);
+        if (auto radiance = v.find("radiance")) l.radiance = radiance->color();
     }
     return l;
 }
@@ -498,7 +487,7 @@ SceneDesc parseSceneText(const std::string& text, const fs::path& file) {
     scene.camera = parseCamera(root.find("camera").value_or(JsonValue(noCamera, "/camera", label)));
     if (auto film = root.find("film")) scene.film = parseFilm(*film, folder);
     if (auto render = root.find("render")) scene.render = parseRender(*render);
-    if (auto background = root.find("background")) scene.background = nonNegative(*background);
+    if (auto background = root.find("background")) scene.background = background->color();
     if (auto materials = root.find("materials"))
         scene.materials = scene_detail::parseMaterials(*materials, folder);
 

@@ -16,6 +16,7 @@
 
 #include "strahl/core/error.h"
 #include "strahl/meshio/mesh_file.h"
+#include "warning_capture.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;
@@ -25,6 +26,7 @@ using ::testing::Not;
 namespace strahl {
 namespace {
 
+using test::WarningCapture;
 using test::writeFile;
 
 // ------------------------------------------------------------------ helpers
@@ -74,19 +76,6 @@ std::string base64(const std::string& bytes) {
 std::string dataUri(const std::string& bytes) {
     return "data:application/octet-stream;base64," + base64(bytes);
 }
-
-// Collects the meshio warnings of its lifetime.
-class WarningCapture {
-public:
-    WarningCapture() {
-        setMeshWarningHandler([this](const std::string& m) { text_ += m + "\n"; });
-    }
-    ~WarningCapture() { setMeshWarningHandler(nullptr); }
-    const std::string& text() const { return text_; }
-
-private:
-    std::string text_;
-};
 
 // The triangle (0,0,0) (1,0,0) (0,1,0), normals +z, uvs (0,0) (1,0) (0,1) in
 // glTF's convention, u16 indices 0 1 2: accessors 0 POSITION, 1 NORMAL,

@@ -13,6 +13,7 @@
 
 #include "strahl/core/error.h"
 #include "strahl/meshio/mesh_file.h"
+#include "warning_capture.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;
@@ -21,20 +22,8 @@ using ::testing::HasSubstr;
 namespace strahl {
 namespace {
 
+using test::WarningCapture;
 using test::writeFile;
-
-// Collects the meshio warnings of its lifetime.
-class WarningCapture {
-public:
-    WarningCapture() {
-        setMeshWarningHandler([this](const std::string& m) { text_ += m + "\n"; });
-    }
-    ~WarningCapture() { setMeshWarningHandler(nullptr); }
-    const std::string& text() const { return text_; }
-
-private:
-    std::string text_;
-};
 
 // One triangle per material name, in that order, with `mtl` as m.mtl.
 LoadedMesh loadWithMaterials(const fs::path& dir, const std::string& mtl,

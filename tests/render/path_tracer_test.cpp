@@ -9,9 +9,8 @@
 #include <cmath>
 #include <string>
 
-#include "strahl/render/renderer.h"
-#include "strahl/scene/scene_builder.h"
 #include "strahl/scene/scene_desc.h"
+#include "render_helpers.h"
 #include "test_support.h"
 
 namespace strahl {
@@ -26,21 +25,8 @@ struct Image {
 Image renderText(const std::string& text, const std::string& name,
                  LightSampling sampling = LightSampling::Mis, int threads = 2) {
     const SceneDesc desc = parseSceneText(text, test::scratchDir("path") / (name + ".json"));
-    BuildOptions build;
-    build.threads = threads;
-    const World world = buildWorld(desc, build);
-    const Camera camera = buildCamera(desc.camera, desc.film.width, desc.film.height);
-    IntegratorOptions options = buildIntegratorOptions(desc, camera);
-    options.sampling = sampling;
-    const auto integrator = makeIntegrator(desc.render.integrator, world, options);
-    Film film(desc.film.width, desc.film.height, PixelRect{0, 0, desc.film.width, desc.film.height},
-              {AovKind::Variance});
-    RenderOptions render;
-    render.threads = threads;
-    render.spp = desc.render.spp;
-    render.seed = desc.render.seed;
-    render.filter = buildPixelFilter(desc.film);
-    renderImage(world, camera, *integrator, film, render);
+    const Film film = test::renderFilm(
+        desc, {.aovs = {AovKind::Variance}, .threads = threads, .sampling = sampling});
     return Image{desc.film.width, desc.film.height, film.resolveBeauty(),
                  film.resolveAov(AovKind::Variance)};
 }

@@ -13,8 +13,6 @@
 #include <filesystem>
 
 #include "strahl/film/image_output.h"
-#include "strahl/render/renderer.h"
-#include "strahl/scene/scene_builder.h"
 #include "render_helpers.h"
 #include "test_support.h"
 
@@ -35,16 +33,7 @@ TEST_P(Regression, MatchesReference) {
     const fs::path scene = test::sourceDir() / "scenes/regression" / (GetParam() + ".json");
     const fs::path reference = test::sourceDir() / "tests/golden" / (GetParam() + ".exr");
     const SceneDesc desc = parseSceneFile(scene);
-    const World world = buildWorld(desc, BuildOptions{});
-    const Camera camera = buildCamera(desc.camera, desc.film.width, desc.film.height);
-    Film film(desc.film.width, desc.film.height, PixelRect{0, 0, desc.film.width, desc.film.height}, {});
-    RenderOptions options;
-    options.spp = desc.render.spp;
-    options.seed = desc.render.seed;
-    options.filter = buildPixelFilter(desc.film);
-    renderImage(world, camera,
-                *makeIntegrator(desc.render.integrator, world, buildIntegratorOptions(desc, camera)),
-                film, options);
+    const Film film = test::renderFilm(desc);
 
     const fs::path rendered = test::scratchDir("regression-" + GetParam()) / "render.exr";
     OutputSettings settings;

@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +17,45 @@
 
 namespace strahl::test {
 
+// How renderFilm renders a SceneDesc. The defaults are the scene's own
+// settings and those of a plain `strahl render`. Every member has an
+// initializer, so designated initializers may name any subset (in this order).
+struct RenderSetup {
+    std::vector<AovKind> aovs{};  // the film's AOVs besides beauty
+    AccelKind accel = AccelKind::Embree;
+    std::string integrator{};  // empty: desc.render.integrator
+    int threads = 0;           // for the BVH build and the render; 0: all hardware threads
+    int tile = 32;
+    std::optional<int> spp{};                 // default: desc.render.spp (one pass)
+    std::optional<uint64_t> seed{};           // default: desc.render.seed
+    std::optional<LightSampling> sampling{};  // default: buildIntegratorOptions' (MIS)
+};
+
+// The whole film of `desc` rendered as `setup` says: the scene built, its
+// camera, integrator options and pixel filter, one renderImage pass.
+inline Film renderFilm(const SceneDesc& desc, const RenderSetup& setup = {}) {
+    BuildOptions build;
+    build.accel = setup.accel;
+    build.threads = setup.threads;
+    const World world = buildWorld(desc, build);
+    const Camera camera = buildCamera(desc.camera, desc.film.width, desc.film.height);
+    IntegratorOptions integratorOptions = buildIntegratorOptions(desc, camera);
+    if (setup.sampling) integratorOptions.sampling = *setup.sampling;
+    const auto integrator =
+        makeIntegrator(setup.integrator.empty() ? desc.render.integrator : setup.integrator, world,
+                       integratorOptions);
+    Film film(desc.film.width, desc.film.height, PixelRect{0, 0, desc.film.width, desc.film.height},
+              setup.aovs);
+    RenderOptions options;
+    options.threads = setup.threads;
+    options.tileSize = setup.tile;
+    options.spp = setup.spp.value_or(desc.render.spp);
+    options.seed = setup.seed.value_or(desc.render.seed);
+    options.filter = buildPixelFilter(desc.film);
+    renderImage(world, camera, *integrator, film, options);
+    return film;
+}
+
 struct Rendered {
     std::vector<float> beauty, depth, normal;
 };
@@ -23,22 +64,11 @@ struct Rendered {
 // plus the depth and normal AOVs.
 inline Rendered render(const SceneDesc& desc, AccelKind accel, const std::string& integrator,
                        int threads = 2, int tile = 32) {
-    BuildOptions build;
-    build.accel = accel;
-    build.threads = threads;
-    const World world = buildWorld(desc, build);
-    const Camera camera = buildCamera(desc.camera, desc.film.width, desc.film.height);
-    Film film(desc.film.width, desc.film.height, PixelRect{0, 0, desc.film.width, desc.film.height},
-              {AovKind::Normal, AovKind::Depth});
-    RenderOptions options;
-    options.threads = threads;
-    options.tileSize = tile;
-    options.spp = desc.render.spp;
-    options.seed = desc.render.seed;
-    options.filter = buildPixelFilter(desc.film);
-    renderImage(world, camera,
-                *makeIntegrator(integrator, world, buildIntegratorOptions(desc, camera)), film,
-                options);
+    const Film film = renderFilm(desc, {.aovs = {AovKind::Normal, AovKind::Depth},
+                                        .accel = accel,
+                                        .integrator = integrator,
+                                        .threads = threads,
+                                        .tile = tile});
     return Rendered{film.resolveBeauty(), film.resolveAov(AovKind::Depth),
                     film.resolveAov(AovKind::Normal)};
 }

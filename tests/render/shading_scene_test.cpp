@@ -8,9 +8,8 @@
 #include <cmath>
 #include <string>
 
-#include "strahl/render/renderer.h"
-#include "strahl/scene/scene_builder.h"
 #include "strahl/scene/scene_desc.h"
+#include "render_helpers.h"
 #include "test_support.h"
 
 namespace strahl {
@@ -37,17 +36,7 @@ struct Rendered {
 
 Rendered renderIn(const fs::path& dir, const std::string& text) {
     const SceneDesc desc = parseSceneText(text, dir / "scene.json");
-    const World world = buildWorld(desc, BuildOptions{});
-    const Camera camera = buildCamera(desc.camera, desc.film.width, desc.film.height);
-    Film film(desc.film.width, desc.film.height, PixelRect{0, 0, desc.film.width, desc.film.height},
-              {AovKind::Albedo});
-    RenderOptions options;
-    options.spp = desc.render.spp;
-    options.seed = desc.render.seed;
-    options.filter = buildPixelFilter(desc.film);
-    renderImage(world, camera,
-                *makeIntegrator(desc.render.integrator, world, buildIntegratorOptions(desc, camera)),
-                film, options);
+    const Film film = test::renderFilm(desc, {.aovs = {AovKind::Albedo}});
     return Rendered{desc.film.width, film.resolveBeauty(), film.resolveAov(AovKind::Albedo)};
 }
 

@@ -16,8 +16,7 @@
 #include <filesystem>
 
 #include "strahl/film/image_output.h"
-#include "strahl/render/renderer.h"
-#include "strahl/scene/scene_builder.h"
+#include "render_helpers.h"
 #include "test_support.h"
 
 namespace strahl {
@@ -41,17 +40,8 @@ struct NoisyImage {
 };
 
 NoisyImage renderScene(const SceneDesc& desc, int spp, uint64_t seed, const fs::path& exr) {
-    const World world = buildWorld(desc, BuildOptions{});
-    const Camera camera = buildCamera(desc.camera, desc.film.width, desc.film.height);
-    Film film(desc.film.width, desc.film.height, PixelRect{0, 0, desc.film.width, desc.film.height},
-              {AovKind::Variance});
-    RenderOptions options;
-    options.spp = spp;
-    options.seed = seed;
-    options.filter = buildPixelFilter(desc.film);
-    renderImage(world, camera,
-                *makeIntegrator(desc.render.integrator, world, buildIntegratorOptions(desc, camera)),
-                film, options);
+    const Film film =
+        test::renderFilm(desc, {.aovs = {AovKind::Variance}, .spp = spp, .seed = seed});
     if (!exr.empty()) {
         OutputSettings settings;
         settings.exrFloat = true;
