@@ -8,5 +8,5 @@ cmake --build "$root/build" --target strahl
 mkdir -p "$root/out"
 "$root/build/bin/strahl" render "$root/scenes/default.json" \
   -o "$root/out/default.exr" -o "$root/out/default.png"
-echo "rendered: $root/out/default.exr (scene-linear, with normal/depth/albedo AOVs)"
+echo "rendered: $root/out/default.exr (scene-linear, with normal/depth/albedo/variance AOVs)"
 echo "rendered: $root/out/default.png (sRGB display)"
