@@ -24,9 +24,6 @@ using geometry_detail::roundUp;
 constexpr int kDefaultCells = 32;
 constexpr int kMaxCells = 256;
 
-
-
-
 }  // namespace
 
 ImplicitShape::ImplicitShape(ImplicitSurfacePtr surface, const Mat4& objectToWorld,
