@@ -1,10 +1,13 @@
 #include "commands.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 
+#include "render_control.h"
 #include "strahl/core/error.h"
+#include "strahl/film/checkpoint.h"
 #include "strahl/film/image_output.h"
 #include "strahl/meshio/mesh_file.h"
 #include "strahl/raster/rasterizer.h"
@@ -74,6 +77,8 @@ int runRender(const Options& o) {
     requireIntegratorName(desc.render.integrator);
     const bool raster = o.algorithm == "raster";
     if (raster) requireRasterSettings(desc.render.integrator, desc.render.spp);
+    if (raster && (o.checkpoint || o.resume || o.timeLimit))
+        fail("--checkpoint, --resume and --time-limit apply to ray tracing, not --algorithm raster");
     const PixelRect crop = cropWindow(o, desc);
 
     if (o.quiet) setMeshWarningHandler([](const std::string&) {});
@@ -110,6 +115,14 @@ int runRender(const Options& o) {
         progress.end();
         stats.seconds = rasterStats.seconds;
     } else {
+        const std::string fingerprint = renderFingerprint(o, desc, crop);
+        if (o.resume) {
+            readCheckpoint(film, *o.resume, fingerprint);
+            if (!o.quiet)
+                std::fprintf(stderr, "resuming from %s: %u of %d samples per pixel done\n",
+                             o.resume->c_str(), film.sampleCount(crop.x0, crop.y0),
+                             desc.render.spp);
+        }
         RenderOptions options;
         options.threads = o.threads.value_or(0);
         options.tileSize = o.tileSize;
@@ -118,7 +131,24 @@ int runRender(const Options& o) {
         options.filter = buildPixelFilter(desc.film);
         options.packets = o.packets;
         options.progress = &progress;
+        options.cancel = &InterruptGuard::cancelFlag();
+        const auto renderStart = std::chrono::steady_clock::now();
+        auto lastCheckpoint = renderStart;
+        const auto secondsSince = [](std::chrono::steady_clock::time_point t) {
+            return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+        };
+        options.passDone = [&](int) {
+            if (o.checkpoint && secondsSince(lastCheckpoint) >= o.checkpointInterval) {
+                writeCheckpoint(film, *o.checkpoint, fingerprint);
+                lastCheckpoint = std::chrono::steady_clock::now();
+            }
+            return !(o.timeLimit && secondsSince(renderStart) >= *o.timeLimit);
+        };
+        const InterruptGuard interrupts;
         stats = renderImage(world, camera, *integrator, film, options);
+        // The state at the end, complete or not, so nothing rendered is lost:
+        // an interrupted render resumes from exactly where it stopped.
+        if (o.checkpoint) writeCheckpoint(film, *o.checkpoint, fingerprint);
     }
 
     OutputSettings output;
@@ -133,11 +163,33 @@ int runRender(const Options& o) {
     metadata.extra["seed"] = std::to_string(desc.render.seed);
     metadata.extra["scene"] = desc.file.filename().string();
     metadata.extra["algorithm"] = o.algorithm;
+    const bool partial = stats.cancelled || stats.stoppedEarly;
+    if (!raster) {
+        // Every pixel has at least completedPasses samples; after an interrupt
+        // the tiles that were in flight have one more.
+        metadata.extra["samples"] = std::to_string(stats.completedPasses);
+        metadata.extra["partial"] = partial ? "1" : "0";
+        if (stats.cancelled) metadata.extra["stopped"] = signalName(InterruptGuard::signalNumber());
+        if (stats.stoppedEarly) metadata.extra["stopped"] = "time limit";
+    }
     if (!raster) metadata.extra["accel"] = o.accel;
     for (const auto& out : desc.film.outputs) {
         writeImage(film, out, output, metadata);
         if (!o.quiet) std::fprintf(stderr, "wrote %s\n", out.string().c_str());
     }
+
+    if (stats.cancelled) {
+        const int signal = InterruptGuard::signalNumber();
+        std::fprintf(stderr,
+                     "strahl: interrupted by %s after %d of %d samples per pixel; the images "
+                     "written are partial%s\n",
+                     signalName(signal).c_str(), stats.completedPasses, desc.render.spp,
+                     o.checkpoint ? " (resume with --resume)" : "");
+        return 128 + signal;  // the shell's convention for death by a signal
+    }
+    if (stats.stoppedEarly && !o.quiet)
+        std::fprintf(stderr, "time limit reached: stopped after %d of %d samples per pixel\n",
+                     stats.completedPasses, desc.render.spp);
 
     if (!o.quiet && raster) {
         std::fprintf(stderr,

@@ -89,6 +89,20 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
         ->check(CLI::IsMember({"raytrace", "raster"}));
     render->add_option("--tile", o.tileSize, "Tile size in pixels (default 32)")
         ->check(CLI::Range(4, 4096));
+    render->add_option("--checkpoint", o.checkpoint,
+                       "Write the render's state to FILE after a sample pass every "
+                       "--checkpoint-interval seconds, on SIGINT/SIGTERM and at the end; continue "
+                       "it with --resume FILE (docs/reliability.md)");
+    render->add_option("--checkpoint-interval", o.checkpointInterval,
+                       "Seconds between checkpoints (default 60)")
+        ->check(CLI::Range(0.0, 1e9));
+    render->add_option("--resume", o.resume,
+                       "Continue the render saved in this checkpoint; the result is bit-identical "
+                       "to an uninterrupted render (same scene and settings required)");
+    render->add_option("--time-limit", o.timeLimit,
+                       "Stop after the first whole sample pass that ends past this many seconds "
+                       "of rendering, and write the image (exit 0; metadata says how many samples)")
+        ->check(CLI::Range(0.0, 1e9));
     render->add_option("--ocio-config", o.color.configFile,
                        "OpenColorIO config for display outputs (default: $OCIO, else built-in)");
     render->add_option("--display", o.color.display, "OCIO display (built-in: sRGB)");

@@ -33,6 +33,10 @@ struct Options {
     std::string accel = "embree";  // embree | naive
     std::string algorithm = "raytrace";  // raytrace | raster
     ColorSettings color;
+    std::optional<std::string> checkpoint;  // file written every checkpointInterval s and at the end
+    double checkpointInterval = 60.0;
+    std::optional<std::string> resume;      // checkpoint to continue from
+    std::optional<double> timeLimit;        // seconds of rendering; stops at a whole sample pass
     // bench
     BenchCommandOptions bench;
 };

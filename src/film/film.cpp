@@ -1,6 +1,9 @@
 #include "strahl/film/film.h"
 
 #include <algorithm>
+#include <istream>
+#include <ostream>
+#include <string>
 #include <utility>
 
 #include "strahl/core/error.h"
@@ -170,6 +173,59 @@ std::vector<float> Film::resolveAov(AovKind kind) const {
         px[2] = value.z;
     }
     return out;
+}
+
+// --- checkpoint state --------------------------------------------------------
+
+namespace {
+
+template <typename T>
+void writeVector(std::ostream& out, const std::vector<T>& v) {
+    const uint64_t n = v.size();
+    out.write(reinterpret_cast<const char*>(&n), sizeof n);
+    out.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(n * sizeof(T)));
+}
+
+template <typename T>
+void readVector(std::istream& in, std::vector<T>& v, const std::string& source, const char* what) {
+    uint64_t n = 0;
+    in.read(reinterpret_cast<char*>(&n), sizeof n);
+    // The film was constructed for the same image: every buffer must already
+    // have the stored size (so a corrupt count cannot make us allocate).
+    if (!in || n != v.size())
+        fail(source, ": checkpoint buffer '", what, "' does not match this image (",
+             in ? std::to_string(n) : std::string("truncated"), " values, expected ", v.size(),
+             ")");
+    in.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(n * sizeof(T)));
+    if (!in) fail(source, ": checkpoint is truncated in buffer '", what, "'");
+}
+
+}  // namespace
+
+void Film::writeState(std::ostream& out) const {
+    writeVector(out, radiance_);
+    writeVector(out, samples_);
+    writeVector(out, hits_);
+    writeVector(out, normal_);
+    writeVector(out, depth_);
+    writeVector(out, albedo_);
+    writeVector(out, position_);
+    writeVector(out, objectId_);
+    writeVector(out, mean_);
+    writeVector(out, m2_);
+}
+
+void Film::readState(std::istream& in, const std::string& source) {
+    readVector(in, radiance_, source, "radiance");
+    readVector(in, samples_, source, "samples");
+    readVector(in, hits_, source, "hits");
+    readVector(in, normal_, source, "normal");
+    readVector(in, depth_, source, "depth");
+    readVector(in, albedo_, source, "albedo");
+    readVector(in, position_, source, "position");
+    readVector(in, objectId_, source, "objectid");
+    readVector(in, mean_, source, "variance mean");
+    readVector(in, m2_, source, "variance m2");
 }
 
 }  // namespace strahl

@@ -40,12 +40,13 @@ struct TileContext {
     }
 };
 
+// Samples [s0, s1) of every pixel of `tile`.
 template <int N>
 void renderTilePackets(TileContext& ctx, const TileRayGenerator& gen, const PixelRect& tile,
-                       int spp) {
+                       int s0, int s1) {
     using Packet = CameraPacket<N>;
     Packet packet;
-    for (int s = 0; s < spp; ++s) {
+    for (int s = s0; s < s1; ++s) {
         for (int by = tile.y0; by < tile.y1; by += Packet::kBlockHeight) {
             for (int bx = tile.x0; bx < tile.x1; bx += Packet::kBlockWidth) {
                 ctx.cameraRays += static_cast<uint64_t>(gen.fillPacket(tile, bx, by, s, packet));
@@ -63,9 +64,9 @@ void renderTilePackets(TileContext& ctx, const TileRayGenerator& gen, const Pixe
 }
 
 void renderTileSingle(TileContext& ctx, const TileRayGenerator& gen, const PixelRect& tile,
-                      int spp) {
+                      int s0, int s1) {
     Sampler sampler;
-    for (int s = 0; s < spp; ++s) {
+    for (int s = s0; s < s1; ++s) {
         for (int y = tile.y0; y < tile.y1; ++y) {
             for (int x = tile.x0; x < tile.x1; ++x) {
                 const Ray ray = gen.sampleRay(x, y, s, sampler);
@@ -89,6 +90,19 @@ int resolvePacketWidth(PacketMode mode, const Accel& accel) {
     return accel.nativePacketWidth() == 16 ? 16 : 8;
 }
 
+// The samples every pixel of `tile` already has in the film (0 for a new film,
+// more when resuming from a checkpoint). Tiles are rendered whole, so all
+// pixels of a tile agree unless the film was made with another tile size.
+int tileStartSample(const Film& film, const PixelRect& tile) {
+    const uint32_t count = film.sampleCount(tile.x0, tile.y0);
+    for (int y = tile.y0; y < tile.y1; ++y)
+        for (int x = tile.x0; x < tile.x1; ++x)
+            if (film.sampleCount(x, y) != count)
+                fail("the film's pixels in tile (", tile.x0, ", ", tile.y0,
+                     ") have different sample counts: it was rendered with another tile size");
+    return static_cast<int>(count);
+}
+
 RenderStats renderImage(const World& world, const Camera& camera, const Integrator& integrator,
                         Film& film, const RenderOptions& options) {
     if (options.spp < 1) fail("samples per pixel must be at least 1, got ", options.spp);
@@ -101,35 +115,73 @@ RenderStats renderImage(const World& world, const Camera& camera, const Integrat
 
     RenderStats result;
     result.packetWidth = resolvePacketWidth(options.packets, *world.accel);
+    std::vector<int> tileStart(tiles.size());
+    int firstPass = options.spp;
+    size_t work = 0;  // tile passes still to render
+    for (size_t i = 0; i < tiles.size(); ++i) {
+        tileStart[i] = tileStartSample(film, tiles[i]);
+        if (tileStart[i] > options.spp)
+            fail("the film already has ", tileStart[i], " samples per pixel, more than the ",
+                 options.spp, " asked for");
+        firstPass = std::min(firstPass, tileStart[i]);
+        work += static_cast<size_t>(options.spp - tileStart[i]);
+    }
+    result.completedPasses = firstPass;
+
     std::atomic<uint64_t> cameraRays{0}, shadowRays{0}, bounceRays{0};
     std::atomic<bool> firstTile{true};
-    if (options.progress) options.progress->begin("render", tiles.size());
+    const auto cancelled = [&] {
+        return options.cancel && options.cancel->load(std::memory_order_relaxed);
+    };
+    if (options.progress) options.progress->begin("render", work);
 
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
-    arena.execute([&] {
-        // Grain 1: tiles are the unit of load balancing; they vary a lot in cost.
-        tbb::parallel_for(
-            tbb::blocked_range<size_t>(0, tiles.size(), 1),
-            [&](const tbb::blocked_range<size_t>& range) {
-                for (size_t i = range.begin(); i != range.end(); ++i) {
-                    TileContext ctx{world, integrator, film, !film.aovs().empty(), {}, 0};
-                    switch (result.packetWidth) {
-                        case 16: renderTilePackets<16>(ctx, generator, tiles[i], options.spp); break;
-                        case 8: renderTilePackets<8>(ctx, generator, tiles[i], options.spp); break;
-                        default: renderTileSingle(ctx, generator, tiles[i], options.spp); break;
+    // Pass s renders sample s of every tile that does not have it yet, so after
+    // each pass the image is a complete (s + 1)-sample image. Every pixel still
+    // accumulates its samples in index order, whatever the passes, threads or
+    // tile order: the sums, hence the image, are bit-identical.
+    for (int pass = firstPass; pass < options.spp; ++pass) {
+        if (cancelled()) break;
+        arena.execute([&] {
+            // Grain 1: tiles are the unit of load balancing; they vary a lot in cost.
+            tbb::parallel_for(
+                tbb::blocked_range<size_t>(0, tiles.size(), 1),
+                [&](const tbb::blocked_range<size_t>& range) {
+                    for (size_t i = range.begin(); i != range.end(); ++i) {
+                        // Tiles in flight finish; the rest of the pass is skipped.
+                        if (tileStart[i] > pass || cancelled()) continue;
+                        TileContext ctx{world, integrator, film, !film.aovs().empty(), {}, 0};
+                        switch (result.packetWidth) {
+                            case 16:
+                                renderTilePackets<16>(ctx, generator, tiles[i], pass, pass + 1);
+                                break;
+                            case 8:
+                                renderTilePackets<8>(ctx, generator, tiles[i], pass, pass + 1);
+                                break;
+                            default:
+                                renderTileSingle(ctx, generator, tiles[i], pass, pass + 1);
+                                break;
+                        }
+                        cameraRays += ctx.cameraRays;
+                        shadowRays += ctx.stats.shadowRays;
+                        bounceRays += ctx.stats.bounceRays;
+                        if (firstTile.exchange(false))
+                            result.firstTileSeconds = std::chrono::duration<double>(
+                                                          std::chrono::steady_clock::now() - start)
+                                                          .count();
+                        if (options.progress) options.progress->advance(1);
                     }
-                    cameraRays += ctx.cameraRays;
-                    shadowRays += ctx.stats.shadowRays;
-                    bounceRays += ctx.stats.bounceRays;
-                    if (firstTile.exchange(false))
-                        result.firstTileSeconds = std::chrono::duration<double>(
-                                                      std::chrono::steady_clock::now() - start)
-                                                      .count();
-                    if (options.progress) options.progress->advance(1);
-                }
-            },
-            tbb::simple_partitioner());
-    });
+                },
+                tbb::simple_partitioner());
+        });
+        if (cancelled()) break;
+        result.completedPasses = pass + 1;
+        if (options.passDone && pass + 1 < options.spp && !options.passDone(pass + 1)) {
+            result.stoppedEarly = true;
+            break;
+        }
+    }
+    result.cancelled = cancelled() && result.completedPasses < options.spp;
 
     if (options.progress) options.progress->end();
     result.seconds =

@@ -7,6 +7,7 @@
 // and the summation order is fixed (deterministic).
 
 #include <cstdint>
+#include <iosfwd>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -62,6 +63,17 @@ public:
     // sample belongs to, not necessarily the one its raster position lies in.
     // The first call for a pixel is its first sample (the objectid AOV).
     void addSample(int x, int y, const Color& radiance, const AovSample& aov);
+
+    // Samples accumulated so far in pixel (x, y) (full-image coordinates).
+    uint32_t sampleCount(int x, int y) const { return samples_[index(x, y)]; }
+
+    // The complete accumulation state, for checkpoints (film/checkpoint.h):
+    // written raw and read back bit for bit, so a resumed render continues
+    // every sum exactly where it stopped. readState throws strahl::Error
+    // naming `source` if the data does not match this film's size, crop and
+    // AOVs or is truncated.
+    void writeState(std::ostream& out) const;
+    void readState(std::istream& in, const std::string& source);
 
     // Resolved crop-sized images, row-major from the top row, interleaved channels.
     std::vector<float> resolveBeauty() const;  // RGB

@@ -1,11 +1,15 @@
 #pragma once
 // The render loop: the crop window is cut into square tiles rendered in
-// parallel by oneTBB; inside a tile, camera rays are generated and traced as
-// coherent packets (camera/tile_rays.h) and every lane's hit is shaded by the
-// integrator. Pixels belong to exactly one tile and samples are accumulated in
-// sample order, so the image is bit-identical for any thread count.
+// parallel by oneTBB, one sample pass at a time; inside a tile, camera rays are
+// generated and traced as coherent packets (camera/tile_rays.h) and every
+// lane's hit is shaded by the integrator. Pixels belong to exactly one tile and
+// samples are accumulated in sample order, so the image is bit-identical for
+// any thread count, tile order or pass structure, and a render resumed from a
+// film that already holds samples (a checkpoint) continues it exactly.
 
+#include <atomic>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "strahl/camera/camera.h"
@@ -29,6 +33,13 @@ struct RenderOptions {
     PacketMode packets = PacketMode::Auto;
     PixelFilter filter = PixelFilter::box();  // where samples land around pixel centres
     ProgressReporter* progress = nullptr;
+    // Set (from a signal handler, say) to stop: tiles in flight finish, the
+    // rest are skipped, and renderImage returns with `cancelled` set.
+    const std::atomic<bool>* cancel = nullptr;
+    // Called on the calling thread after each complete sample pass but the
+    // last, with the samples per pixel done; returning false stops the render
+    // there (time limits). Checkpoints are written from here.
+    std::function<bool(int samplesDone)> passDone;
 };
 
 struct RenderStats {
@@ -39,6 +50,9 @@ struct RenderStats {
     uint64_t bounceRays = 0;  // secondary rays that continue paths
     uint64_t totalRays() const { return cameraRays + shadowRays + bounceRays; }
     int packetWidth = 1;  // the width actually used
+    int completedPasses = 0;  // samples per pixel every pixel has (after a resume: in all)
+    bool cancelled = false;   // stopped by `cancel` before the last pass
+    bool stoppedEarly = false;  // stopped by passDone returning false
 };
 
 // The tiles of `crop`, size x size pixels (smaller at the right and bottom

@@ -1,0 +1,79 @@
+#include "render_control.h"
+
+#include <cstdint>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+#include "strahl/core/error.h"
+
+namespace strahl::app {
+
+namespace {
+
+std::atomic<bool> gCancel{false};
+// Written by the handler, read after the render: sig_atomic_t is what a
+// handler may write.
+volatile std::sig_atomic_t gSignal = 0;
+
+static_assert(std::atomic<bool>::is_always_lock_free,
+              "the signal handler may only touch lock-free atomics");
+
+extern "C" void onInterrupt(int signal) {
+    gSignal = signal;
+    gCancel.store(true, std::memory_order_relaxed);
+    // A second signal is not caught: it kills the process as usual.
+    std::signal(signal, SIG_DFL);
+}
+
+// FNV-1a, 64 bit: enough to tell one scene file from another, not a
+// security measure.
+uint64_t fnv1a(const std::string& bytes) {
+    uint64_t h = 0xcbf29ce484222325ULL;
+    for (unsigned char c : bytes) {
+        h ^= c;
+        h *= 0x100000001b3ULL;
+    }
+    return h;
+}
+
+}  // namespace
+
+InterruptGuard::InterruptGuard() {
+    gCancel.store(false);
+    gSignal = 0;
+    previousInt_ = std::signal(SIGINT, onInterrupt);
+    previousTerm_ = std::signal(SIGTERM, onInterrupt);
+}
+
+InterruptGuard::~InterruptGuard() {
+    std::signal(SIGINT, previousInt_ == SIG_ERR ? SIG_DFL : previousInt_);
+    std::signal(SIGTERM, previousTerm_ == SIG_ERR ? SIG_DFL : previousTerm_);
+}
+
+const std::atomic<bool>& InterruptGuard::cancelFlag() { return gCancel; }
+int InterruptGuard::signalNumber() { return gSignal; }
+
+std::string signalName(int signal) {
+    if (signal == SIGINT) return "SIGINT";
+    if (signal == SIGTERM) return "SIGTERM";
+    return "signal " + std::to_string(signal);
+}
+
+std::string renderFingerprint(const Options& o, const SceneDesc& desc, const PixelRect& crop) {
+    std::ifstream in(desc.file, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::ostringstream f;
+    f << "scene " << desc.file.filename().string() << " fnv1a " << std::hex << fnv1a(bytes)
+      << std::dec << ", " << desc.film.width << "x" << desc.film.height << ", crop " << crop.x0
+      << "," << crop.y0 << "," << crop.x1 << "," << crop.y1 << ", " << desc.render.spp
+      << " spp, seed " << desc.render.seed << ", " << desc.render.integrator << " depth "
+      << desc.render.maxDepth << (desc.render.russianRoulette ? " rr" : " no-rr") << ", filter "
+      << desc.film.filter;
+    if (desc.film.filterRadius) f << " r " << *desc.film.filterRadius;
+    f << ", tile " << o.tileSize << ", aovs";
+    for (AovKind a : desc.film.aovs) f << " " << aovName(a);
+    return f.str();
+}
+
+}  // namespace strahl::app

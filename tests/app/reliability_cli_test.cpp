@@ -1,0 +1,204 @@
+// Unattended rendering through the CLI: bit-identical images for any thread
+// count and tile size; SIGINT/SIGTERM write a partial image and exit 128 + the
+// signal; a checkpointed, interrupted and resumed render equals the
+// uninterrupted one bit for bit; --time-limit stops at a whole sample pass.
+
+#include <OpenImageIO/imagebuf.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "app/cli_runner.h"
+#include "test_support.h"
+
+namespace strahl {
+namespace {
+
+namespace fs = std::filesystem;
+using test::runStrahl;
+
+// A path-traced scene with every geometry kind and glass (long, varied paths),
+// small enough for tests, rendered to float EXR with AOVs.
+const std::string kScene =
+    (test::sourceDir() / "scenes/statistical/glossy_room.json").string();
+const std::string kFlags = " --width 48 --height 36 --exr-float -q --aov variance --aov albedo";
+
+struct Exr {
+    std::vector<float> pixels;
+    int channels = 0;
+    std::string partial, samples, stopped;
+};
+
+Exr readExr(const fs::path& file) {
+    OIIO::ImageBuf image(file.string());
+    Exr e;
+    if (!image.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
+        ADD_FAILURE() << "cannot read " << file << ": " << image.geterror();
+        return e;
+    }
+    const OIIO::ImageSpec& spec = image.spec();
+    e.channels = spec.nchannels;
+    e.pixels.resize(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
+    image.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, e.pixels.data());
+    e.partial = spec.get_string_attribute("strahl:partial");
+    e.samples = spec.get_string_attribute("strahl:samples");
+    e.stopped = spec.get_string_attribute("strahl:stopped");
+    return e;
+}
+
+// Bit-identical: every channel of every pixel, compared as floats (no NaNs).
+void expectIdentical(const Exr& a, const Exr& b, const std::string& what) {
+    ASSERT_EQ(a.channels, b.channels) << what;
+    ASSERT_EQ(a.pixels.size(), b.pixels.size()) << what;
+    size_t differing = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) differing += a.pixels[i] != b.pixels[i];
+    EXPECT_EQ(differing, 0u) << what << ": " << differing << " of " << a.pixels.size()
+                             << " values differ";
+}
+
+Exr renderWith(const fs::path& dir, const std::string& name, const std::string& flags) {
+    const fs::path out = dir / (name + ".exr");
+    const test::RunResult r = runStrahl("render " + kScene + kFlags + " -o " + out.string() + flags);
+    EXPECT_EQ(r.status, 0) << r.err;
+    return readExr(out);
+}
+
+TEST(Determinism, SameImageForAnyThreadCountAndTileSize) {
+    const fs::path dir = test::scratchDir("determinism");
+    const Exr reference = renderWith(dir, "t1", " --spp 8 --threads 1 --tile 32");
+    expectIdentical(reference, renderWith(dir, "t2", " --spp 8 --threads 2 --tile 32"), "2 threads");
+    expectIdentical(reference, renderWith(dir, "t2x8", " --spp 8 --threads 2 --tile 8"),
+                    "2 threads, 8-pixel tiles");
+    expectIdentical(reference, renderWith(dir, "t1x12", " --spp 8 --threads 1 --tile 12"),
+                    "1 thread, 12-pixel tiles");
+    expectIdentical(reference, renderWith(dir, "single", " --spp 8 --packets single"),
+                    "single rays");
+    EXPECT_EQ(reference.partial, "0");
+    EXPECT_EQ(reference.samples, "8");
+}
+
+// Starts strahl in the background; the caller signals it and waits.
+pid_t startStrahl(const std::string& args, const fs::path& errFile) {
+    const pid_t pid = fork();
+    if (pid == 0) {
+        const std::string command =
+            std::string(STRAHL_BINARY) + " " + args + " 2>" + errFile.string();
+        execl("/bin/sh", "sh", "-c", ("exec " + command).c_str(), static_cast<char*>(nullptr));
+        _exit(127);
+    }
+    return pid;
+}
+
+int waitExit(pid_t pid) {
+    int raw = 0;
+    waitpid(pid, &raw, 0);
+    return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+}
+
+// Waits until `file` exists (the first checkpoint: the render is under way).
+bool waitForFile(const fs::path& file) {
+    for (int i = 0; i < 2000; ++i) {
+        if (fs::exists(file)) return true;
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return false;
+}
+
+class Interrupt : public ::testing::TestWithParam<int> {};
+
+TEST_P(Interrupt, WritesAPartialImageAndResumesToTheSameImageBitForBit) {
+    const int signal = GetParam();
+    const fs::path dir = test::scratchDir("interrupt-" + std::to_string(signal));
+    const Exr full = renderWith(dir, "full", " --spp 64");
+
+    // Interval 0: a checkpoint after every pass; its appearance tells that the
+    // render is under way. 64 spp at 48 x 36 lasts long enough to be caught.
+    const fs::path checkpoint = dir / "render.ckpt", partial = dir / "partial.exr";
+    const pid_t pid = startStrahl("render " + kScene + kFlags + " --spp 64 -o " +
+                                      partial.string() + " --checkpoint " + checkpoint.string() +
+                                      " --checkpoint-interval 0",
+                                  dir / "err.txt");
+    ASSERT_TRUE(waitForFile(checkpoint)) << test::readFile(dir / "err.txt");
+    kill(pid, signal);
+    const int status = waitExit(pid);
+    const std::string err = test::readFile(dir / "err.txt");
+    if (status == 0) GTEST_SKIP() << "the render finished before the signal arrived";
+    EXPECT_EQ(status, 128 + signal) << err;
+    EXPECT_TRUE(test::contains(err, signal == SIGINT ? "interrupted by SIGINT" : "by SIGTERM"))
+        << err;
+
+    const Exr cut = readExr(partial);
+    EXPECT_EQ(cut.partial, "1");
+    EXPECT_EQ(cut.stopped, signal == SIGINT ? "SIGINT" : "SIGTERM");
+    EXPECT_LT(std::stoi(cut.samples), 64);
+
+    const fs::path resumed = dir / "resumed.exr";
+    const test::RunResult r = runStrahl("render " + kScene + kFlags + " --spp 64 -o " +
+                                        resumed.string() + " --resume " + checkpoint.string());
+    ASSERT_EQ(r.status, 0) << r.err;
+    const Exr done = readExr(resumed);
+    EXPECT_EQ(done.partial, "0");
+    EXPECT_EQ(done.samples, "64");
+    expectIdentical(full, done, "resumed after " + cut.samples + " samples");
+}
+
+INSTANTIATE_TEST_SUITE_P(Signals, Interrupt, ::testing::Values(SIGINT, SIGTERM),
+                         [](const ::testing::TestParamInfo<int>& p) {
+                             return std::string(p.param == SIGINT ? "SIGINT" : "SIGTERM");
+                         });
+
+TEST(Checkpoint, ResumingAFinishedCheckpointRendersNothingAndGivesTheSameImage) {
+    const fs::path dir = test::scratchDir("checkpoint-complete");
+    const fs::path checkpoint = dir / "c.ckpt";
+    const Exr full = renderWith(dir, "full", " --spp 4 --checkpoint " + checkpoint.string());
+    ASSERT_TRUE(fs::exists(checkpoint));
+    expectIdentical(full, renderWith(dir, "again", " --spp 4 --resume " + checkpoint.string()),
+                    "resumed from a complete checkpoint");
+}
+
+TEST(Checkpoint, OtherSettingsOrAForeignFileAreOneClearError) {
+    const fs::path dir = test::scratchDir("checkpoint-errors");
+    const fs::path checkpoint = dir / "c.ckpt";
+    renderWith(dir, "full", " --spp 2 --checkpoint " + checkpoint.string());
+    const fs::path out = dir / "other.exr";
+    test::RunResult r = runStrahl("render " + kScene + kFlags + " --spp 3 -o " + out.string() +
+                                  " --resume " + checkpoint.string());
+    EXPECT_EQ(r.status, 1);
+    EXPECT_TRUE(test::contains(r.err, "the checkpoint was made with other settings")) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+
+    test::writeFile(dir / "junk.ckpt", "not a checkpoint");
+    r = runStrahl("render " + kScene + kFlags + " --spp 2 -o " + out.string() + " --resume " +
+                  (dir / "junk.ckpt").string());
+    EXPECT_EQ(r.status, 1);
+    EXPECT_TRUE(test::contains(r.err, "junk.ckpt: not a strahl checkpoint")) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(TimeLimit, StopsAtAWholeSamplePassAndWritesTheImage) {
+    const fs::path dir = test::scratchDir("time-limit");
+    // A limit of 0 s stops after the first pass.
+    const Exr cut = renderWith(dir, "cut", " --spp 16 --time-limit 0");
+    EXPECT_EQ(cut.partial, "1");
+    EXPECT_EQ(cut.samples, "1");
+    EXPECT_EQ(cut.stopped, "time limit");
+    // Stopped by the time limit with a checkpoint, then resumed, the render
+    // completes to the uninterrupted image.
+    const fs::path checkpoint = dir / "t.ckpt";
+    renderWith(dir, "cut2", " --spp 16 --time-limit 0 --checkpoint " + checkpoint.string());
+    expectIdentical(renderWith(dir, "full", " --spp 16"),
+                    renderWith(dir, "rest", " --spp 16 --resume " + checkpoint.string()),
+                    "time-limited render resumed");
+}
+
+}  // namespace
+}  // namespace strahl
