@@ -1,6 +1,7 @@
 #include "commands.h"
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -74,6 +75,15 @@ int runRender(const Options& o) {
         fail(o.scene, ": no output image: give -o FILE or film.outputs in the scene");
     // Fail on a bad output path or integrator name now, not after a long render.
     for (const auto& out : desc.film.outputs) checkOutputPath(out);
+    // A bad OCIO config must fail now, not after the render: load it if any
+    // output goes through the display transform or a config was named.
+    const bool displayOutput = std::any_of(
+        desc.film.outputs.begin(), desc.film.outputs.end(), [](const std::filesystem::path& p) {
+            std::string ext = p.extension().string();
+            for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+            return ext != ".exr";
+        });
+    if (displayOutput || !o.color.configFile.empty()) DisplayTransform::get(o.color);
     requireIntegratorName(desc.render.integrator);
     const bool raster = o.algorithm == "raster";
     if (raster) requireRasterSettings(desc.render.integrator, desc.render.spp);

@@ -39,6 +39,10 @@ std::string parseCrop(const std::string& text, std::optional<PixelRect>& crop) {
 
 std::optional<int> parseOptions(int argc, char** argv, Options& o) {
     CLI::App app{kDescription, "strahl"};
+    // A bad command line is one line like every other error (exit status 2).
+    app.failure_message([](const CLI::App*, const CLI::Error& e) {
+        return std::string("strahl: error: ") + e.what() + "\n";
+    });
     app.set_version_flag("--version", "strahl " STRAHL_VERSION);
     app.require_subcommand(1);
 

@@ -1,5 +1,6 @@
 #include "strahl/geometry/implicit_shape.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -83,6 +84,23 @@ ImplicitShape::ImplicitShape(ImplicitSurfacePtr surface, const Mat4& objectToWor
             }
     if (cells_.empty())
         fail("the surface ", surface_->describe(), " has no point inside its domain");
+
+    // A function that is infinite or NaN wherever it is evaluated (1/(x - x) is
+    // +inf everywhere) has no surface to find, yet its interval ranges, which
+    // span (-inf, inf), clear no cell. Sampling the centres of up to 4096 kept
+    // cells, spread over all of them, tells it apart from a function with
+    // isolated singularities; the first finite value ends the scan.
+    const size_t stride = std::max<size_t>(1, cells_.size() / 4096);
+    bool finiteSomewhere = false;
+    for (size_t c = 0; c < cells_.size() && !finiteSomewhere; c += stride)
+        finiteSomewhere = std::isfinite(surface_->value(0.5 * (cells_[c].min + cells_[c].max)));
+    if (!finiteSomewhere) {
+        const DVec3 p = 0.5 * (cells_[0].min + cells_[0].max);
+        const double f = surface_->value(p);
+        fail("the surface ", surface_->describe(), " is not finite anywhere in its domain (",
+             std::isnan(f) ? std::string("NaN") : concat(f), " at (", p.x, ", ", p.y, ", ", p.z,
+             ") and at every other point sampled)");
+    }
 
     // World boxes: the eight transformed corners, rounded outwards to float.
     worldBounds_.reserve(cells_.size());

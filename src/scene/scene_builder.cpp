@@ -33,6 +33,20 @@ LoadedMesh loadShape(const ShapeDesc& shape) {
     return loadMeshFile(shape.file);
 }
 
+// True when some triangle has a non-zero area. A mesh whose triangles are all
+// degenerate (collinear or repeated corners) is as invisible as one without
+// triangles. The cross product is taken in double so that a tiny but real
+// triangle does not underflow to zero; the first such triangle ends the scan.
+bool hasTriangleWithArea(const TriangleMesh& mesh) {
+    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+        const DVec3 p0(mesh.positions[mesh.indices[3 * t]]);
+        const DVec3 p1(mesh.positions[mesh.indices[3 * t + 1]]);
+        const DVec3 p2(mesh.positions[mesh.indices[3 * t + 2]]);
+        if (glm::cross(p1 - p0, p2 - p0) != DVec3(0.0)) return true;
+    }
+    return false;
+}
+
 std::string shapeSource(const SceneDesc& desc, const ShapeDesc& shape) {
     return concat(desc.file.filename().string(), ": ", shape.where,
                   shape.file.empty() ? std::string() : " (" + shape.file.string() + ")");
@@ -220,6 +234,9 @@ World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTiming
                 mesh.mesh.validate(shapeSource(desc, shape));
                 if (mesh.mesh.triangleCount() == 0)
                     fail(shapeSource(desc, shape), ": the mesh has no triangles");
+                if (!hasTriangleWithArea(mesh.mesh))
+                    fail(shapeSource(desc, shape), ": all ", mesh.mesh.triangleCount(),
+                         " triangles of the mesh are degenerate (zero area)");
                 loaded[i] = std::move(mesh);
             } catch (...) {
                 errors[i] = std::current_exception();
@@ -250,8 +267,13 @@ World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTiming
         } else {
             for (const MeshMaterial& m : loaded[i].materials) {
                 geometry.materialOfSlot.push_back(static_cast<uint32_t>(world.materials.size()));
-                world.materials.push_back(
-                    scene_detail::buildMeshMaterial(m, shape.name + "/" + m.name, world));
+                // Its errors (an unreadable texture) name the material; add the scene file.
+                try {
+                    world.materials.push_back(
+                        scene_detail::buildMeshMaterial(m, shape.name + "/" + m.name, world));
+                } catch (const Error& e) {
+                    fail(desc.file.filename().string(), ": ", e.what());
+                }
             }
         }
         jobs[i].destination->push_back(std::move(geometry));
