@@ -116,7 +116,10 @@ struct TextureSystem::Impl {
         id = counter.fetch_add(1) + 1;
     }
     ~Impl() {
-        if (system) OiioSystem::destroy(system);
+        // teardown_imagecache: without it OIIO 2.4 deletes the TextureSystem
+        // but not the private ImageCache create(false) made for it, which
+        // keeps its tiles, open files and per-thread records for ever.
+        if (system) OiioSystem::destroy(system, /*teardown_imagecache=*/true);
     }
 
     // The calling thread's OIIO per-thread record for this system, fetched
