@@ -50,7 +50,12 @@ float triangleSolidAngle(const Vec3& p, const Vec3& p0, const Vec3& p1, const Ve
 std::optional<SphericalTriangleSample> sampleSphericalTriangle(const Vec3& p, const Vec3& p0,
                                                                const Vec3& p1, const Vec3& p2,
                                                                const Vec2& u) {
-    const float solidAngle = triangleSolidAngle(p, p0, p1, p2);
+    return sampleSphericalTriangle(p, p0, p1, p2, u, triangleSolidAngle(p, p0, p1, p2));
+}
+
+std::optional<SphericalTriangleSample> sampleSphericalTriangle(const Vec3& p, const Vec3& p0,
+                                                               const Vec3& p1, const Vec3& p2,
+                                                               const Vec2& u, float solidAngle) {
     if (!(solidAngle > 0.0f)) return std::nullopt;
     const DVec3 origin(p), v0(p0), v1(p1), v2(p2);
     const DVec3 a = glm::normalize(v0 - origin), b = glm::normalize(v1 - origin),

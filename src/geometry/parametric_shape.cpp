@@ -357,20 +357,7 @@ SurfaceInteraction ParametricShape::interaction(const Ray& ray, const Hit& hit) 
     const float len = glm::length(hit.Ng);
     si.Ng = len > 0.0f && std::isfinite(len) ? hit.Ng / len : -glm::normalize(ray.dir);
     si.Ns = si.Ng;
-    const ParamDomain& dom = surface_->domain();
-    si.uv = Vec2(static_cast<float>((params.x - dom.u0) / dom.width()),
-                 static_cast<float>((params.y - dom.v0) / dom.height()));
-    // The texture frame of that uv (the surface's (u, v) normalised over the
-    // domain, so a periodic texture wraps exactly at a periodic seam): by the
-    // chain rule ∂p/∂uv.x = width · ∂u f and ∂p/∂uv.y = height · ∂v f, mapped to
-    // world space by the linear part like any tangent. uvDensity converts world
-    // lengths to uv lengths: 1 / sqrt(world area per unit uv area).
-    const DVec3 dpds = linear * (dom.width() * s.dpdu);
-    const DVec3 dpdt = linear * (dom.height() * s.dpdv);
-    if (isFiniteD(dpds)) si.dpdu = Vec3(dpds);
-    const double area = glm::length(glm::cross(dpds, dpdt));
-    // Zero area (a pole, where ∂φ f vanishes) or overflow: density unknown.
-    if (area > 0.0 && std::isfinite(area)) si.uvDensity = static_cast<float>(1.0 / std::sqrt(area));
+    surface_->setTextureFrame(si, s, params.x, params.y, linear);
     si.materialSlot = 0;
     return si;
 }

@@ -29,25 +29,42 @@ SurfacePoint ParametricSurface::automaticPartials(uint32_t patch, double u, doub
     return s;
 }
 
-DVec3 ParametricSurface::normal(uint32_t patch, double u, double v) const {
+std::optional<DVec3> ParametricSurface::regularNormal(const SurfacePoint& s) {
     // A cross product shorter than this fraction of |∂u f|·|∂v f| (partials
     // parallel to 8 digits), or with a zero partial, is a singular point: its
-    // direction is rounding noise, so take the limit from inside instead.
+    // direction is rounding noise.
     constexpr double kSingular = 1e-8;
+    const DVec3 n = glm::cross(s.dpdu, s.dpdv);
+    const double len = glm::length(n);
+    const double scale = glm::length(s.dpdu) * glm::length(s.dpdv);
+    if (finite(n) && len > kSingular * scale && len > 0.0) return n / len;
+    return std::nullopt;
+}
+
+DVec3 ParametricSurface::normal(uint32_t patch, double u, double v) const {
     const ParamDomain& dom = domain();
     const double cu = 0.5 * (dom.u0 + dom.u1), cv = 0.5 * (dom.v0 + dom.v1);
-    // Steps towards the centre, as a fraction of the way there: the first is
-    // small enough that the normal of a smooth surface moves by ~1e-6, the
-    // later ones get away from a singular curve (a cone's apex circle) that
-    // the first did not leave.
-    for (const double step : {0.0, 1e-6, 1e-4, 1e-2}) {
-        const SurfacePoint s = partials(patch, u + step * (cu - u), v + step * (cv - v));
-        const DVec3 n = glm::cross(s.dpdu, s.dpdv);
-        const double len = glm::length(n);
-        const double scale = glm::length(s.dpdu) * glm::length(s.dpdv);
-        if (finite(n) && len > kSingular * scale && len > 0.0) return n / len;
-    }
+    // At a singular point take the limit from inside. Steps towards the
+    // centre, as a fraction of the way there: the first is small enough that
+    // the normal of a smooth surface moves by ~1e-6, the later ones get away
+    // from a singular curve (a cone's apex circle) that the first did not leave.
+    for (const double step : {0.0, 1e-6, 1e-4, 1e-2})
+        if (const auto n = regularNormal(partials(patch, u + step * (cu - u), v + step * (cv - v))))
+            return *n;
     return DVec3(0.0);
+}
+
+void ParametricSurface::setTextureFrame(SurfaceInteraction& si, const SurfacePoint& s, double u,
+                                        double v, const glm::dmat3& linear) const {
+    const ParamDomain& dom = domain();
+    si.uv = Vec2(static_cast<float>((u - dom.u0) / dom.width()),
+                 static_cast<float>((v - dom.v0) / dom.height()));
+    const DVec3 dpds = linear * (dom.width() * s.dpdu);
+    const DVec3 dpdt = linear * (dom.height() * s.dpdv);
+    if (finite(dpds)) si.dpdu = Vec3(dpds);
+    const double area = glm::length(glm::cross(dpds, dpdt));
+    // Zero area (a pole, where ∂φ f vanishes) or overflow: density unknown.
+    if (area > 0.0 && std::isfinite(area)) si.uvDensity = static_cast<float>(1.0 / std::sqrt(area));
 }
 
 double parametricExtent(const ParametricSurface& surface) {

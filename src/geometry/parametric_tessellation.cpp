@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <unordered_map>
 
 #include <glm/geometric.hpp>
@@ -140,6 +141,7 @@ TessellatedSurface::TessellatedSurface(ParametricSurfacePtr surface, Tessellatio
     : surface_(std::move(surface)),
       params_(std::move(tessellation.params)),
       patchFirstTriangle_(std::move(tessellation.patchFirstTriangle)),
+      linearToWorld_(glm::dmat3(Mat3(objectToWorld))),
       normalToWorld_(normalMatrix(objectToWorld)),
       normals_(normals) {}
 
@@ -160,8 +162,12 @@ SurfaceInteraction TessellatedSurface::interaction(const TriangleMesh& worldMesh
     SurfaceInteraction si = triangleInteraction(worldMesh, prim, b1, b2);
     const Vec2 uv = parameters(worldMesh, prim, b1, b2);
     const uint32_t patch = patchOf(prim);
+    // One evaluation of the partials serves the exact normal and the texture
+    // frame; normal() evaluates again only at a singular point (a pole).
+    const SurfacePoint s = surface_->partials(patch, uv.x, uv.y);
     if (normals_ == ParametricNormals::Exact) {
-        const DVec3 n = surface_->normal(patch, uv.x, uv.y);
+        const std::optional<DVec3> regular = ParametricSurface::regularNormal(s);
+        const DVec3 n = regular ? *regular : surface_->normal(patch, uv.x, uv.y);
         const Vec3 world = normalToWorld_ * Vec3(n);
         const float len = glm::length(world);
         if (len > 0.0f && std::isfinite(len)) {
@@ -169,23 +175,9 @@ SurfaceInteraction TessellatedSurface::interaction(const TriangleMesh& worldMesh
             if (glm::dot(si.Ng, si.Ns) < 0.0f) si.Ng = -si.Ng;
         }
     }
-    const ParamDomain& d = surface_->domain();
-    si.uv = Vec2(static_cast<float>((uv.x - d.u0) / d.width()),
-                 static_cast<float>((uv.y - d.v0) / d.height()));
-    // The texture frame of that uv, from the surface's exact partials (smooth
-    // across triangles, like the exact normal): by the chain rule
-    // ∂p/∂uv.x = width · ∂u f and ∂p/∂uv.y = height · ∂v f. The mesh is in
-    // world space, so tangents are mapped by objectToWorld's linear part — the
-    // inverse transpose of the normal matrix kept here. uvDensity converts
-    // world lengths to uv lengths: 1 / sqrt(world area per unit uv area).
-    const SurfacePoint s = surface_->partials(patch, uv.x, uv.y);
-    const glm::dmat3 linear = glm::inverse(glm::transpose(glm::dmat3(normalToWorld_)));
-    const DVec3 dpds = linear * (d.width() * s.dpdu);
-    const DVec3 dpdt = linear * (d.height() * s.dpdv);
-    if (finite(dpds)) si.dpdu = Vec3(dpds);
-    const double area = glm::length(glm::cross(dpds, dpdt));
-    // Zero area (a pole, where ∂φ f vanishes) or overflow: density unknown.
-    if (area > 0.0 && std::isfinite(area)) si.uvDensity = static_cast<float>(1.0 / std::sqrt(area));
+    // The mesh is in world space, so tangents are mapped by objectToWorld's
+    // linear part.
+    surface_->setTextureFrame(si, s, uv.x, uv.y, linearToWorld_);
     return si;
 }
 

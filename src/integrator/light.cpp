@@ -106,7 +106,8 @@ std::optional<LightLiSample> sampleTriangle(const Light& light, const LightSampl
     LightLiSample s;
     const float solidAngle = triangleSolidAngle(ctx.p, light.p0, light.p1, light.p2);
     if (sampleBySolidAngle(solidAngle)) {
-        const auto st = sampleSphericalTriangle(ctx.p, light.p0, light.p1, light.p2, u);
+        const auto st =
+            sampleSphericalTriangle(ctx.p, light.p0, light.p1, light.p2, u, solidAngle);
         if (!st) return std::nullopt;
         const Vec3 b = st->barycentrics;
         s.pLight = b.x * light.p0 + b.y * light.p1 + b.z * light.p2;

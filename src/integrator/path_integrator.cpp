@@ -38,14 +38,15 @@ Color PathIntegrator::shade(const World& world, const SurfaceHit& first, Sampler
     Ray ray = first.ray();
     Hit hit = first.hit();
     for (int depth = 0;; ++depth) {
-        // The weight of an emitter reached by this ray (BSDF sampling).
-        const auto emitterWeight = [&](const Light* light, const Vec3& dir, const Vec3& pLight) {
-            if (depth == 0 || specularBounce || !light) return 1.0f;
+        // The weight of an emitter reached by this ray (BSDF sampling);
+        // `light` is its index in the light set, kInvalidId if it is not
+        // light-sampled.
+        const auto emitterWeight = [&](uint32_t light, const Vec3& dir, const Vec3& pLight) {
+            if (depth == 0 || specularBounce || light == kInvalidId) return 1.0f;
             if (mode == LightSampling::BsdfOnly) return 1.0f;
             if (mode == LightSampling::LightOnly) return 0.0f;
-            const uint32_t index = static_cast<uint32_t>(light - world.lightSet.lights().data());
-            const float lightPdf =
-                world.lightSet.pmf(index) * pdfLi(*light, prevContext, dir, pLight);
+            const float lightPdf = world.lightSet.pmf(light) *
+                                   pdfLi(world.lightSet.lights()[light], prevContext, dir, pLight);
             return powerHeuristic(1, prevBsdfPdf, 1, lightPdf);
         };
 
@@ -54,7 +55,7 @@ Color PathIntegrator::shade(const World& world, const SurfaceHit& first, Sampler
             for (uint32_t i : world.lightSet.infiniteLights()) {
                 const Light& light = world.lightSet.lights()[i];
                 const Color Le = infiniteLe(light, dir);
-                if (maxComponent(Le) > 0.0f) L += beta * Le * emitterWeight(&light, dir, Vec3(0.0f));
+                if (maxComponent(Le) > 0.0f) L += beta * Le * emitterWeight(i, dir, Vec3(0.0f));
             }
             break;
         }
@@ -65,13 +66,10 @@ Color PathIntegrator::shade(const World& world, const SurfaceHit& first, Sampler
         const ShadingContext ctx = makeShadingContext(world, surface, footprint);
 
         if (ctx.material->emits()) {
-            const Color Le = emittedTowards(world, surface, ctx);
-            if (maxComponent(Le) > 0.0f) {
-                const uint32_t index = world.areaLightOf(hit);
-                const Light* light =
-                    index == kInvalidId ? nullptr : &world.lightSet.lights()[index];
-                L += beta * Le * emitterWeight(light, -ctx.wo, ctx.si->p);
-            }
+            const uint32_t areaLight = world.areaLightOf(hit);
+            const Color Le = emittedTowards(world, ctx, areaLight);
+            if (maxComponent(Le) > 0.0f)
+                L += beta * Le * emitterWeight(areaLight, -ctx.wo, ctx.si->p);
         }
         if (depth >= options_.maxDepth) break;
 

@@ -53,11 +53,10 @@ ShadingContext makeShadingContext(const World& world, const SurfaceHit& hit, flo
     return ctx;
 }
 
-Color emittedTowards(const World& world, const SurfaceHit& hit, const ShadingContext& ctx) {
+Color emittedTowards(const World& world, const ShadingContext& ctx, uint32_t areaLight) {
     const Material& material = *ctx.material;
     if (!material.emits()) return Color(0.0f);
-    const uint32_t light = world.areaLightOf(hit.hit());
-    if (light != kInvalidId) return triangleLe(world.lightSet.lights()[light], ctx.wo);
+    if (areaLight != kInvalidId) return triangleLe(world.lightSet.lights()[areaLight], ctx.wo);
     // Textured emission or a user shape: the front is the surface's own Ng.
     if (!material.twoSidedEmission && glm::dot(ctx.si->Ng, ctx.wo) <= 0.0f) return Color(0.0f);
     return emittedRadiance(material, ctx.point, world.textures.get());

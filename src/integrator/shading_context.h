@@ -43,7 +43,9 @@ struct ShadingContext {
 ShadingContext makeShadingContext(const World& world, const SurfaceHit& hit, float footprint);
 
 // Emitted radiance towards ctx.wo (zero behind a one-sided emitter).
-Color emittedTowards(const World& world, const SurfaceHit& hit, const ShadingContext& ctx);
+// `areaLight` is world.areaLightOf(hit): the caller looks it up once and
+// also needs it for the MIS weight.
+Color emittedTowards(const World& world, const ShadingContext& ctx, uint32_t areaLight);
 
 // One next-event estimate: picks a light by power, samples it, traces the
 // shadow ray. With MIS the result carries the power-heuristic weight against

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <system_error>
 
 namespace strahl::scene_detail {
 namespace {
@@ -275,6 +276,15 @@ std::filesystem::path resolvePath(const std::filesystem::path& folder, const Jso
     if (text.empty()) value.fail("expected a path, got an empty string");
     const std::filesystem::path path(text);
     return (path.is_absolute() ? path : folder / path).lexically_normal();
+}
+
+std::filesystem::path resolveExistingFile(const std::filesystem::path& folder,
+                                          const JsonValue& value, std::string_view noun) {
+    const std::filesystem::path path = resolvePath(folder, value);
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+        value.fail("no such ", noun, " '", value.string(), "' (looked at ", path.string(), ")");
+    return path;
 }
 
 }  // namespace strahl::scene_detail

@@ -100,4 +100,9 @@ std::string joinList(std::span<const std::string_view> items);
 // folder, absolute ones are kept. Fails on an empty string.
 std::filesystem::path resolvePath(const std::filesystem::path& folder, const JsonValue& value);
 
+// resolvePath, and there must be a regular file there; otherwise throws
+// "no such <noun> 'given' (looked at <resolved>)" (noun: "texture file", ...).
+std::filesystem::path resolveExistingFile(const std::filesystem::path& folder,
+                                          const JsonValue& value, std::string_view noun);
+
 }  // namespace strahl::scene_detail

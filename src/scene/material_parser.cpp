@@ -58,11 +58,7 @@ void requireKeys(const JsonValue& v, const std::string& type,
 }
 
 fs::path textureFile(const JsonValue& v, const fs::path& folder) {
-    const fs::path path = resolvePath(folder, v);
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec))
-        v.fail("no such texture file '", v.string(), "' (looked at ", path.string(), ")");
-    return path;
+    return resolveExistingFile(folder, v, "texture file");
 }
 
 // A colour given as a number, [r, g, b], or {"texture": file, "scale": colour}.

@@ -34,6 +34,7 @@ namespace fs = std::filesystem;
 using scene_detail::JsonValue;
 using scene_detail::joinList;
 using scene_detail::parseTransform;
+using scene_detail::resolveExistingFile;
 using scene_detail::resolvePath;
 
 constexpr int64_t kMaxSpp = 65536;
@@ -453,11 +454,7 @@ LightDesc parseLight(const JsonValue& v, const fs::path& folder) {
     } else if (type == "environment") {
         v.requireKeys({"type", "file", "scale", "rotation"});
         l.type = LightType::Environment;
-        const JsonValue file = v.get("file");
-        l.file = resolvePath(folder, file);
-        std::error_code ec;
-        if (!fs::is_regular_file(l.file, ec))
-            file.fail("no such image file '", file.string(), "' (looked at ", l.file.string(), ")");
+        l.file = resolveExistingFile(folder, v.get("file"), "image file");
         if (auto scale = v.find("scale")) l.scale = scale->color();
         if (auto rotation = v.find("rotation"))
             l.rotation = rotation->numberIn(-360.0f, 360.0f, "degrees");

@@ -32,5 +32,10 @@ struct SphericalTriangleSample {
 std::optional<SphericalTriangleSample> sampleSphericalTriangle(const Vec3& p, const Vec3& p0,
                                                                const Vec3& p1, const Vec3& p2,
                                                                const Vec2& u);
+// The same for a caller that already has triangleSolidAngle(p, p0, p1, p2)
+// (light sampling decides on it first), so it is not computed twice.
+std::optional<SphericalTriangleSample> sampleSphericalTriangle(const Vec3& p, const Vec3& p0,
+                                                               const Vec3& p1, const Vec3& p2,
+                                                               const Vec2& u, float solidAngle);
 
 }  // namespace strahl

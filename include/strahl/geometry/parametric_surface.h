@@ -23,11 +23,15 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
+
+#include <glm/mat3x3.hpp>
 
 #include "strahl/core/dual.h"
 #include "strahl/core/interval.h"
 #include "strahl/core/point3.h"
+#include "strahl/geometry/surface_interaction.h"
 
 namespace strahl {
 
@@ -83,6 +87,18 @@ public:
     // from inside the domain: the normal a small step towards the domain's
     // centre. Returns a zero vector only if that limit does not exist either.
     DVec3 normal(uint32_t patch, double u, double v) const;
+    // The unit ∂u f × ∂v f of partials already evaluated, or nullopt at a
+    // singular point (where normal() takes the limit from inside instead).
+    static std::optional<DVec3> regularNormal(const SurfacePoint& s);
+
+    // The texture frame of a hit at (u, v) whose partials are s, for both
+    // rendering modes: si.uv = (u, v) normalised over the domain (so a texture
+    // wraps exactly at a periodic seam); by the chain rule ∂p/∂uv.x = width ·
+    // ∂u f and ∂p/∂uv.y = height · ∂v f, mapped to world space by `linear`
+    // (objectToWorld's linear part) into si.dpdu; si.uvDensity = 1 / sqrt(world
+    // area per unit uv area), or left 0 where that area vanishes (a pole).
+    void setTextureFrame(SurfaceInteraction& si, const SurfacePoint& s, double u, double v,
+                         const glm::dmat3& linear) const;
 };
 
 // Implements the evaluate() overloads with Derived::eval<T>(patch, u, v).

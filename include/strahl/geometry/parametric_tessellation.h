@@ -65,7 +65,8 @@ private:
     ParametricSurfacePtr surface_;
     std::vector<Vec2> params_;
     std::vector<uint32_t> patchFirstTriangle_;
-    Mat3 normalToWorld_;  // inverse transpose of objectToWorld's linear part
+    glm::dmat3 linearToWorld_;  // objectToWorld's linear part (tangents)
+    Mat3 normalToWorld_;        // its inverse transpose (normals)
     ParametricNormals normals_;
 };
 
