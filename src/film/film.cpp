@@ -1,6 +1,9 @@
 #include "strahl/film/film.h"
 
 #include <algorithm>
+#include <cstring>
+#include <tuple>
+#include <type_traits>
 #include <istream>
 #include <ostream>
 #include <string>
@@ -200,7 +203,52 @@ void readVector(std::istream& in, std::vector<T>& v, const std::string& source, 
     if (!in) fail(source, ": checkpoint is truncated in buffer '", what, "'");
 }
 
+// Calls fn(buffer) for every per-pixel buffer of the film, stored or not (an
+// AOV that is not stored has an empty buffer), in one fixed order.
+template <typename FilmBuffers, typename Fn>
+void forEachPixelBuffer(FilmBuffers&& buffers, Fn&& fn) {
+    std::apply([&](auto&... b) { (fn(b), ...); }, buffers);
+}
+
 }  // namespace
+
+std::vector<std::byte> Film::packPixels(const PixelRect& rect) const {
+    if (!crop_.contains(rect)) fail("film: packPixels outside the crop window");
+    std::vector<std::byte> bytes;
+    forEachPixelBuffer(buffers(), [&](const auto& buffer) {
+        if (buffer.empty()) return;
+        using T = typename std::decay_t<decltype(buffer)>::value_type;
+        for (int y = rect.y0; y < rect.y1; ++y) {
+            const auto* row = reinterpret_cast<const std::byte*>(&buffer[index(rect.x0, y)]);
+            bytes.insert(bytes.end(), row, row + sizeof(T) * size_t(rect.width()));
+        }
+    });
+    return bytes;
+}
+
+void Film::unpackPixels(const PixelRect& rect, std::span<const std::byte> bytes,
+                        const std::string& source) {
+    if (!crop_.contains(rect)) fail(source, ": pixels outside the crop window");
+    size_t expected = 0;
+    forEachPixelBuffer(buffers(), [&](const auto& buffer) {
+        if (buffer.empty()) return;
+        using T = typename std::decay_t<decltype(buffer)>::value_type;
+        expected += sizeof(T) * size_t(rect.width()) * size_t(rect.height());
+    });
+    if (bytes.size() != expected)
+        fail(source, ": ", bytes.size(), " bytes of pixel state for a ", rect.width(), "x",
+             rect.height(), " rectangle that needs ", expected);
+    size_t at = 0;
+    forEachPixelBuffer(buffers(), [&](auto& buffer) {
+        if (buffer.empty()) return;
+        using T = typename std::decay_t<decltype(buffer)>::value_type;
+        for (int y = rect.y0; y < rect.y1; ++y) {
+            const size_t n = sizeof(T) * size_t(rect.width());
+            std::memcpy(&buffer[index(rect.x0, y)], bytes.data() + at, n);
+            at += n;
+        }
+    });
+}
 
 void Film::writeState(std::ostream& out) const {
     writeVector(out, radiance_);

@@ -10,7 +10,10 @@
 #include <string>
 #include <vector>
 
+#include <gmock/gmock.h>
+
 #include "strahl/core/error.h"
+#include "test_support.h"
 
 namespace strahl {
 namespace {
@@ -310,6 +313,61 @@ TEST(Film, RejectsAnAovRequestedTwice) {
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("depth"), std::string::npos) << e.what();
     }
+}
+
+// Distributed rendering moves finished tiles between films as packed bytes:
+// unpacking into a fresh film must reproduce exactly the pixels of the tile,
+// every AOV and the variance state included, and leave the others untouched.
+TEST(Film, PackedPixelsUnpackIntoAnotherFilmBitForBit) {
+    const std::vector<AovKind> all{AovKind::Normal,   AovKind::Depth,    AovKind::Albedo,
+                                   AovKind::Position, AovKind::ObjectId, AovKind::Variance};
+    const PixelRect crop{1, 1, 9, 7};
+    Film source(10, 8, crop, all), target(10, 8, crop, all);
+    for (int y = crop.y0; y < crop.y1; ++y)
+        for (int x = crop.x0; x < crop.x1; ++x)
+            for (int s = 0; s < 3; ++s) {
+                const float fx = float(x), fy = float(y), fs = float(s);
+                AovSample aov;
+                aov.hit = (x + s) % 2 == 0;
+                aov.normal = Vec3(0.1f * fx, 0.2f * fy, 0.3f * fs);
+                aov.depth = 1.0f + fx + 0.5f * fs;
+                aov.albedo = Color(0.25f * fs);
+                aov.position = Vec3(fx, fy, fs);
+                aov.objectId = uint32_t(x * 7 + y);
+                source.addSample(x, y, Color(0.1f * fx, 0.3f * fs, 1.0f / (1.0f + fy)), aov);
+            }
+    const PixelRect tile{3, 2, 7, 5};
+    const std::vector<std::byte> bytes = source.packPixels(tile);
+    target.unpackPixels(tile, bytes, "tile");
+    const std::vector<float> a = source.resolveBeauty(), b = target.resolveBeauty();
+    for (int y = crop.y0; y < crop.y1; ++y)
+        for (int x = crop.x0; x < crop.x1; ++x) {
+            const bool inTile = x >= tile.x0 && x < tile.x1 && y >= tile.y0 && y < tile.y1;
+            EXPECT_EQ(target.sampleCount(x, y), inTile ? 3u : 0u) << x << "," << y;
+            const size_t i = 3 * (size_t(y - crop.y0) * crop.width() + size_t(x - crop.x0));
+            if (inTile) {
+                EXPECT_EQ(a[i], b[i]);
+                EXPECT_EQ(a[i + 2], b[i + 2]);
+            } else {
+                EXPECT_EQ(b[i], 0.0f);
+            }
+        }
+    for (AovKind kind : all) {
+        const std::vector<float> sa = source.resolveAov(kind), ta = target.resolveAov(kind);
+        const int c = aovChannels(kind);
+        for (int y = tile.y0; y < tile.y1; ++y)
+            for (int x = tile.x0; x < tile.x1; ++x)
+                for (int k = 0; k < c; ++k) {
+                    const size_t i = size_t(c) * (size_t(y - crop.y0) * crop.width() +
+                                                  size_t(x - crop.x0)) + size_t(k);
+                    EXPECT_EQ(sa[i], ta[i]) << aovName(kind) << " " << x << "," << y;
+                }
+    }
+    EXPECT_THAT(test::errorMessage([&] {
+                    target.unpackPixels(tile, std::span(bytes).first(bytes.size() - 1), "tile 7");
+                }),
+                testing::HasSubstr("tile 7: "));
+    EXPECT_THROW(source.packPixels(PixelRect{0, 0, 4, 4}), Error);
 }
 
 }  // namespace

@@ -9,6 +9,10 @@ struct PixelRect {
     int width() const { return x1 - x0; }
     int height() const { return y1 - y0; }
     bool empty() const { return x1 <= x0 || y1 <= y0; }
+    // Whether `r` (not empty) lies wholly inside this rectangle.
+    bool contains(const PixelRect& r) const {
+        return !r.empty() && r.x0 >= x0 && r.y0 >= y0 && r.x1 <= x1 && r.y1 <= y1;
+    }
     long long area() const { return empty() ? 0 : static_cast<long long>(width()) * height(); }
 };
 

@@ -6,12 +6,14 @@
 // pixel is written by exactly one tile, in sample order, so no locking is needed
 // and the summation order is fixed (deterministic).
 
+#include <cstddef>
 #include <cstdint>
 #include <iosfwd>
 #include <optional>
 #include <span>
 #include <string_view>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "strahl/core/math.h"
@@ -75,12 +77,31 @@ public:
     void writeState(std::ostream& out) const;
     void readState(std::istream& in, const std::string& source);
 
+    // The accumulation state of the pixels of `rect` (full-image coordinates,
+    // inside the crop) as bytes, and its inverse: unpackPixels overwrites those
+    // pixels with state packed by a film of the same size, crop and AOVs (in
+    // another process: distributed rendering moves finished tiles this way).
+    // unpackPixels throws strahl::Error naming `source` if the byte count does
+    // not match.
+    std::vector<std::byte> packPixels(const PixelRect& rect) const;
+    void unpackPixels(const PixelRect& rect, std::span<const std::byte> bytes,
+                      const std::string& source);
+
     // Resolved crop-sized images, row-major from the top row, interleaved channels.
     std::vector<float> resolveBeauty() const;  // RGB
     std::vector<float> resolveAov(AovKind kind) const;
 
 private:
     size_t index(int x, int y) const;
+    // Every per-pixel buffer, in one fixed order (packPixels, unpackPixels).
+    auto buffers() const {
+        return std::tie(radiance_, samples_, hits_, normal_, depth_, albedo_, position_,
+                        objectId_, mean_, m2_);
+    }
+    auto buffers() {
+        return std::tie(radiance_, samples_, hits_, normal_, depth_, albedo_, position_,
+                        objectId_, mean_, m2_);
+    }
 
     int fullWidth_, fullHeight_;
     PixelRect crop_;
