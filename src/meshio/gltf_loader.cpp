@@ -165,7 +165,7 @@ double readComponent(const unsigned char* p, int componentType, bool normalized)
     }
 }
 
-uint32_t readLe32(const std::string& bytes, size_t offset) {
+uint32_t readLe32(std::string_view bytes, size_t offset) {
     uint32_t value = 0;
     std::memcpy(&value, bytes.data() + offset, sizeof value);
     return value;
@@ -301,8 +301,8 @@ class GltfReader {
 public:
     explicit GltfReader(const fs::path& file) : path_(file), name_(file.string()) {}
 
-    LoadedMesh read() {
-        parse();
+    LoadedMesh read(std::string_view bytes) {
+        parse(bytes);
         checkExtensions();
         LoadedMesh result;
         convertMaterials(result.materials);
@@ -332,8 +332,7 @@ private:
 
     // ---------------------------------------------------------------- parsing
 
-    void parse() {
-        const std::string bytes = meshio::readWholeFile(path_);
+    void parse(std::string_view bytes) {
         std::error_code ec;
         const fs::path absolute = fs::weakly_canonical(fs::absolute(path_, ec), ec);
         const std::string absoluteName = ec ? name_ : absolute.string();
@@ -350,6 +349,8 @@ private:
         const bool binary = bytes.size() >= 4 && readLe32(bytes, 0) == kGlbMagic;
         if (binary) {
             const uint32_t length = checkGlbLayout(bytes);
+            checkImageViewsStartInTheirBuffers(
+                bytes.substr(kGlbHeaderBytes + kGlbChunkHeaderBytes, readLe32(bytes, 12)));
             ok = loader.LoadBinaryFromMemory(&model_, &err, &warn,
                                              reinterpret_cast<const unsigned char*>(bytes.data()),
                                              length, folder.string());
@@ -357,6 +358,7 @@ private:
             if (bytes.size() > std::numeric_limits<unsigned int>::max())
                 fail(name_, ": ", bytes.size(),
                      " bytes of JSON is more than tinygltf reads (4 GiB)");
+            checkImageViewsStartInTheirBuffers(bytes);
             ok = loader.LoadASCIIFromString(&model_, &err, &warn, bytes.data(),
                                             static_cast<unsigned int>(bytes.size()),
                                             folder.string());
@@ -368,9 +370,54 @@ private:
         }
     }
 
+    // tinygltf 2.7 hands an image stored in a buffer view to the image loader as
+    // &buffer.data[view.byteOffset] before anything checks the view against its
+    // buffer: for a view starting at or past the buffer's end, an out-of-range
+    // vector index — undefined behaviour (found by the sanitizer build's
+    // _GLIBCXX_ASSERTIONS on a mutated .glb), though nothing reads there
+    // (keepEncodedImage ignores the bytes; checkedView rejects the view later).
+    // So such a file is refused before tinygltf sees it, with checkedView's
+    // message. The JSON is read as tinygltf reads it (indices: integers cut to
+    // int; byteOffset: only if unsigned, else 0; a loaded buffer's data is
+    // exactly its byteLength); anything else wrong is left to tinygltf.
+    void checkImageViewsStartInTheirBuffers(std::string_view text) const {
+        using nlohmann::json;
+        const json doc = json::parse(text.begin(), text.end(), nullptr, /*allow_exceptions=*/false);
+        const auto member = [](const json& object, const char* key) -> const json* {
+            if (!object.is_object()) return nullptr;
+            const auto it = object.find(key);
+            return it == object.end() ? nullptr : &*it;
+        };
+        const auto unsignedOr = [](const json* value, uint64_t otherwise) {
+            return value && value->is_number_unsigned() ? value->get<uint64_t>() : otherwise;
+        };
+        const auto element = [&](const char* array, const json* index, int& i) -> const json* {
+            const json* items = member(doc, array);
+            if (!items || !items->is_array() || !index || !index->is_number_integer())
+                return nullptr;
+            i = static_cast<int>(index->get<int64_t>());
+            return i >= 0 && size_t(i) < items->size() ? &(*items)[size_t(i)] : nullptr;
+        };
+        const json* images = member(doc, "images");
+        if (!images || !images->is_array()) return;
+        for (size_t i = 0; i < images->size(); ++i) {
+            int view = -1, buffer = -1;
+            const json* v = element("bufferViews", member((*images)[i], "bufferView"), view);
+            const json* b = v ? element("buffers", member(*v, "buffer"), buffer) : nullptr;
+            const json* bufferLength = b ? member(*b, "byteLength") : nullptr;
+            if (!bufferLength || !bufferLength->is_number_unsigned()) continue;
+            const uint64_t offset = unsignedOr(member(*v, "byteOffset"), 0);
+            if (offset >= bufferLength->get<uint64_t>())
+                error("images[", i, "]: buffer view ", view, " (",
+                      unsignedOr(member(*v, "byteLength"), 0), " bytes from offset ", offset,
+                      ") reads past the end of buffer ", buffer, " (",
+                      bufferLength->get<uint64_t>(), " bytes)");
+        }
+    }
+
     // Checks the GLB header and chunk headers (tinygltf's own messages do not say
     // what is missing) and returns the length the header announces.
-    uint32_t checkGlbLayout(const std::string& bytes) const {
+    uint32_t checkGlbLayout(std::string_view bytes) const {
         const auto place = [&](size_t offset) {
             return concat(name_, ": byte offset ", offset, ": ");
         };
@@ -1116,7 +1163,11 @@ private:
 }  // namespace
 
 LoadedMesh loadGltf(const fs::path& file) {
-    return GltfReader(file).read();
+    return loadGltfFromMemory(meshio::readWholeFile(file), file);
+}
+
+LoadedMesh loadGltfFromMemory(std::string_view data, const fs::path& file) {
+    return GltfReader(file).read(data);
 }
 
 }  // namespace strahl

@@ -25,7 +25,7 @@ constexpr uint32_t kNone = UINT32_MAX;
 
 // Calls fn(scanner) for every line of `text` (line numbers start at 1).
 template <typename Fn>
-void forEachLine(const std::string& file, const std::string& text, Fn&& fn) {
+void forEachLine(const std::string& file, std::string_view text, Fn&& fn) {
     const char* p = text.data();
     const char* const end = p + text.size();
     for (size_t line = 1; p < end; ++line) {
@@ -125,7 +125,7 @@ public:
     MaterialLibraryReader(const fs::path& mtlFile, MaterialLibrary& library)
         : name_(mtlFile.string()), dir_(mtlFile.parent_path()), library_(library) {}
 
-    void read(const std::string& text) {
+    void read(std::string_view text) {
         forEachLine(name_, text, [this](LineScanner& s) { statement(s); });
     }
 
@@ -263,8 +263,7 @@ class ObjReader {
 public:
     explicit ObjReader(const fs::path& file) : path_(file), name_(file.string()) {}
 
-    LoadedMesh read() {
-        const std::string text = meshio::readWholeFile(path_);
+    LoadedMesh read(std::string_view text) {
         forEachLine(name_, text, [this](LineScanner& s) { statement(s); });
         return finish();
     }
@@ -494,7 +493,11 @@ private:
 }  // namespace
 
 LoadedMesh loadObj(const fs::path& file) {
-    return ObjReader(file).read();
+    return loadObjFromMemory(meshio::readWholeFile(file), file);
+}
+
+LoadedMesh loadObjFromMemory(std::string_view data, const fs::path& file) {
+    return ObjReader(file).read(data);
 }
 
 }  // namespace strahl

@@ -91,7 +91,7 @@ struct Header {
     size_t endHeaderLine = 0;  // for errors about the header as a whole
 };
 
-Header parseHeader(const std::string& file, const std::string& data) {
+Header parseHeader(const std::string& file, std::string_view data) {
     Header h;
     bool haveFormat = false;
     size_t pos = 0;
@@ -101,7 +101,7 @@ Header parseHeader(const std::string& file, const std::string& data) {
         };
         if (pos >= data.size()) error("end of file before end_header");
         size_t eol = data.find('\n', pos);
-        if (eol == std::string::npos) eol = data.size();
+        if (eol == std::string_view::npos) eol = data.size();
         const std::string_view line(data.data() + pos, eol - pos);
         pos = eol + 1;
 
@@ -193,7 +193,7 @@ U byteSwap(U v) {
 template <bool kSwap>
 class BinarySource {
 public:
-    BinarySource(const std::string& file, const std::string& data, size_t offset)
+    BinarySource(const std::string& file, std::string_view data, size_t offset)
         : file_(file),
           begin_(data.data()),
           p_(begin_ + offset),
@@ -267,7 +267,7 @@ private:
 
 class AsciiSource {
 public:
-    AsciiSource(const std::string& file, const std::string& data, size_t offset, size_t line)
+    AsciiSource(const std::string& file, std::string_view data, size_t offset, size_t line)
         : file_(file),
           begin_(data.data()),
           p_(begin_ + offset),
@@ -504,8 +504,11 @@ TriangleMesh readBody(Source& src, const Header& h, const Layout& layout) {
 }  // namespace
 
 LoadedMesh loadPly(const fs::path& file) {
+    return loadPlyFromMemory(meshio::readWholeFile(file), file);
+}
+
+LoadedMesh loadPlyFromMemory(std::string_view data, const fs::path& file) {
     const std::string name = file.string();
-    const std::string data = meshio::readWholeFile(file);
     const Header header = parseHeader(name, data);
     const Layout layout = makeLayout(name, header);
 

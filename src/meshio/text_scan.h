@@ -17,7 +17,8 @@
 namespace strahl::meshio {
 
 // The whole file as bytes; throws "file: cannot open: <strerror>" when it is
-// missing or unreadable. (Defined in mesh_file.cpp.)
+// missing or unreadable, and "file: cannot open: not a regular file" for a
+// device, FIFO or socket. (Defined in mesh_file.cpp.)
 std::string readWholeFile(const std::filesystem::path& file);
 
 // Prints "strahl: warning: <message>" as one line on stderr.

@@ -509,6 +509,22 @@ TEST(GltfLoader, MutatedGlbEitherLoadsOrFailsWithAStrahlError) {
     fs::remove_all(loadGltf(dir / "m.glb").materials.at(0).diffuseTexture.parent_path());
 }
 
+// One of those mutations: the image's view starts past the end of the buffer.
+// tinygltf 2.7 would index the buffer there before checking anything
+// (undefined behaviour, caught by the sanitizer build); the loader refuses the
+// file before tinygltf reads it.
+TEST(GltfLoader, ImageViewStartingPastItsBufferIsAnError) {
+    const fs::path dir = test::scratchDir("gltf-image-view");
+    std::string glb = quadGlb();
+    const size_t at = glb.find(R"("byteOffset": 72, "byteLength": 7})");
+    ASSERT_NE(at, std::string::npos);
+    glb[at + 14] = '9';  // byte offset 92 of the 80-byte buffer, the file's length unchanged
+    writeFile(dir / "m.glb", glb);
+    EXPECT_THAT(test::errorMessage([&] { loadGltf(dir / "m.glb"); }),
+                HasSubstr("m.glb: images[0]: buffer view 2 (7 bytes from offset 92) reads past "
+                          "the end of buffer 0 (80 bytes)"));
+}
+
 // ------------------------------------------------------------------ errors
 
 struct BadGltf {

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "strahl/core/math.h"
@@ -49,6 +50,14 @@ LoadedMesh loadPly(const std::filesystem::path& file);
 // glTF 2.0, .gltf or .glb (docs/mesh-files.md): the default scene flattened into
 // world space, materials with source Gltf, uvs stored as (u, 1 - v).
 LoadedMesh loadGltf(const std::filesystem::path& file);
+
+// The same loaders on bytes already in memory (the path loaders above read the
+// file and call these; the fuzz targets in fuzz/ call them directly). `file`
+// names the data in errors and anchors what it refers to: an OBJ's mtllib and
+// texture names, a glTF's external buffers and images. It need not exist.
+LoadedMesh loadObjFromMemory(std::string_view data, const std::filesystem::path& file);
+LoadedMesh loadPlyFromMemory(std::string_view data, const std::filesystem::path& file);
+LoadedMesh loadGltfFromMemory(std::string_view data, const std::filesystem::path& file);
 
 // Recoverable problems (a missing .mtl, an unknown material, an attribute only
 // some corners have) are warnings, not errors. They go to the handler set here,
