@@ -10,6 +10,7 @@ packages=(
   libembree-dev libopenimageio-dev libopenexr-dev libopencolorio-dev
   libglm-dev libtbb-dev libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev libtinygltf-dev
+  clang-14 libclang-rt-14-dev
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -1,0 +1,111 @@
+// Replays, through the fuzz targets' own harness (fuzz/fuzz_harness.h), every
+// input a fuzz target failed on (tests/data/fuzz/<target>/, one file per bug
+// fixed) and the seed corpora (fuzz/corpus/<target>/). Each input must load or
+// be rejected with a strahl::Error: never crash, hang or throw anything else.
+// Under the sanitizer build this also checks them for leaks and undefined
+// behaviour. docs/reliability.md, "Fuzzing".
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <exception>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "../../fuzz/fuzz_harness.h"
+#include "strahl/core/error.h"
+#include "test_support.h"
+
+namespace strahl {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct FuzzTarget {
+    const char* name;  // as in fuzz/: the folder names of its inputs
+    void (*run)(std::string_view input);
+};
+
+const FuzzTarget kTargets[] = {
+    {"fuzz_scene_json", &fuzz::runSceneJson},
+    {"fuzz_ply", &fuzz::runPly},
+    {"fuzz_obj", &fuzz::runObj},
+    {"fuzz_gltf", &fuzz::runGltf},
+    {"fuzz_formula", &fuzz::runFormula},
+};
+
+const FuzzTarget& targetNamed(std::string_view name) {
+    for (const FuzzTarget& t : kTargets) {
+        if (t.name == name) return t;
+    }
+    throw std::invalid_argument(std::string(name));
+}
+
+// The files of `dir`, sorted (none if it does not exist).
+std::vector<fs::path> filesIn(const fs::path& dir) {
+    std::vector<fs::path> files;
+    std::error_code ec;
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+        if (it->is_regular_file()) files.push_back(it->path());
+    }
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
+// Runs one input; returns the strahl::Error message, or "" if it loaded.
+std::string replay(const FuzzTarget& target, const fs::path& file) {
+    const std::string input = test::readFile(file);
+    try {
+        target.run(input);
+    } catch (const Error& e) {
+        return e.what();
+    } catch (const std::exception& e) {
+        ADD_FAILURE() << file << ": threw something other than strahl::Error: " << e.what();
+    }
+    return {};
+}
+
+class FuzzRegression : public testing::TestWithParam<FuzzTarget> {};
+
+TEST_P(FuzzRegression, FoundInputsLoadOrFailWithAnError) {
+    const FuzzTarget& target = GetParam();
+    for (const fs::path& file : filesIn(test::sourceDir() / "tests/data/fuzz" / target.name)) {
+        SCOPED_TRACE(file.string());
+        replay(target, file);
+    }
+}
+
+TEST_P(FuzzRegression, SeedCorpusLoadsOrFailsWithAnError) {
+    const FuzzTarget& target = GetParam();
+    const std::vector<fs::path> seeds = filesIn(test::sourceDir() / "fuzz/corpus" / target.name);
+    EXPECT_FALSE(seeds.empty()) << "no seed corpus for " << target.name;
+    for (const fs::path& file : seeds) {
+        SCOPED_TRACE(file.string());
+        replay(target, file);
+    }
+}
+
+// The bugs behind tests/data/fuzz/, each with the error its input now gives.
+
+// readWholeFile reads regular files only: /dev/zero named as a material library
+// or a Bezier patch file was read until memory ran out.
+TEST(FuzzRegressionInputs, DevicesAreNotRegularFiles) {
+    const fs::path dir = test::sourceDir() / "tests/data/fuzz";
+    const std::string expected = "/dev/zero: cannot open: not a regular file";
+    EXPECT_TRUE(test::contains(
+        replay(targetNamed("fuzz_obj"), dir / "fuzz_obj/mtllib_dev_zero.obj"), expected));
+    EXPECT_TRUE(test::contains(
+        replay(targetNamed("fuzz_scene_json"), dir / "fuzz_scene_json/bezier_file_dev_zero.json"),
+        expected));
+}
+
+INSTANTIATE_TEST_SUITE_P(Targets, FuzzRegression, testing::ValuesIn(kTargets),
+                         [](const testing::TestParamInfo<FuzzTarget>& target) {
+                             return std::string(target.param.name);
+                         });
+
+}  // namespace
+}  // namespace strahl
