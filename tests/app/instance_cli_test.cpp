@@ -9,6 +9,7 @@
 #include <string>
 
 #include "cli_runner.h"
+#include "sanitizers/sanitized.h"
 #include "test_support.h"
 
 namespace strahl {
@@ -38,8 +39,11 @@ TEST(InstanceCli, RendersWithBothAccelerators) {
     const fs::path dir = test::scratchDir("instance-cli-render");
     for (const char* accel : {"embree", "naive"}) {
         const fs::path out = dir / (std::string(accel) + ".exr");
-        const RunResult r = runStrahl("render " + kInstances.string() + " --accel " + accel +
-                                      " --width 48 --height 36 --quiet -o " + out.string());
+        // Fewer pixels under the sanitizers, where the naive tracer is slow.
+        const std::string size = test::fullOrSanitized<std::string>(" --width 48 --height 36",
+                                                                    " --width 16 --height 12");
+        const RunResult r = runStrahl("render " + kInstances.string() + " --accel " + accel + size +
+                                      " --quiet -o " + out.string());
         EXPECT_EQ(r.status, 0) << accel << ": " << r.err;
         EXPECT_TRUE(fs::exists(out)) << accel;
     }

@@ -14,6 +14,7 @@
 
 #include "strahl/core/point3.h"
 
+#include "sanitizers/sanitized.h"
 #include "strahl/accel/accel.h"
 #include "strahl/geometry/parametric_builtins.h"
 #include "strahl/geometry/parametric_shape.h"
@@ -32,6 +33,10 @@ struct Target {
     DVec3 onMesh;
     DVec3 normal;  // of the surface there
 };
+
+// Rays per surface and mode: 500 000 (10⁶ per mode); a quarter of that under
+// the sanitizers, where they take minutes (tests/sanitizers/sanitized.h).
+const int kTargets = test::fullOrSanitized(500000, 125000);
 
 // A point on the seam/pole lines of the domain: one parameter at a border or
 // (for the sphere) a pole, the other random; on the mesh, the same point of
@@ -105,7 +110,8 @@ TEST(ParametricWatertight, TessellationHasNoCracksAtSeamsAndPoles) {
             const ParametricGrid grid = buildParametricGrid(*c.surface, options);
             Tessellation t = tessellateParametric(*c.surface, grid, ParametricNormals::Exact);
             t.mesh.reservePadding();
-            const std::vector<Target> targets = seamTargets(*c.surface, grid.patches[0], 500000, 1);
+            const std::vector<Target> targets =
+                seamTargets(*c.surface, grid.patches[0], kTargets, 1);
             std::mt19937 rng(2);
             std::vector<Ray> rays;
             for (const Target& target : targets) rays.push_back(rayTo(target.onMesh, target.normal, rng));
@@ -129,7 +135,7 @@ TEST(ParametricWatertight, DirectModeHasNoHolesAtSeamsAndPoles) {
         options.initialSegmentsU = options.initialSegmentsV = 4;
         options.maxChordError = 2e-3 * parametricExtent(*c.surface);
         const ParametricGrid grid = buildParametricGrid(*c.surface, options);
-        const std::vector<Target> targets = seamTargets(*c.surface, grid.patches[0], 500000, 3);
+        const std::vector<Target> targets = seamTargets(*c.surface, grid.patches[0], kTargets, 3);
         std::mt19937 rng(4);
         std::vector<Ray> rays;
         for (const Target& target : targets) rays.push_back(rayTo(target.onSurface, target.normal, rng));

@@ -18,6 +18,7 @@
 #include "strahl/render/renderer.h"
 #include "strahl/scene/scene_builder.h"
 #include "render_helpers.h"
+#include "sanitizers/sanitized.h"
 #include "test_support.h"
 
 namespace strahl {
@@ -31,7 +32,12 @@ constexpr float kImageTolerance = 2e-3f;
 class AccelAgreement : public ::testing::TestWithParam<std::string> {
 protected:
     SceneDesc desc() const {
-        return parseSceneFile(test::sourceDir() / "scenes/regression" / (GetParam() + ".json"));
+        SceneDesc d =
+            parseSceneFile(test::sourceDir() / "scenes/regression" / (GetParam() + ".json"));
+        // The naive tracer tests every implicit cell per ray: minutes per scene
+        // under the sanitizers at full size (tests/sanitizers/sanitized.h).
+        test::shrinkFilmWhenSanitized(d, 3);
+        return d;
     }
 };
 

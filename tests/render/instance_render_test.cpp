@@ -14,6 +14,7 @@
 
 #include "strahl/scene/scene_builder.h"
 #include "render_helpers.h"
+#include "sanitizers/sanitized.h"
 #include "test_support.h"
 
 namespace strahl {
@@ -69,8 +70,8 @@ TEST(InstanceRender, InstancedSceneLooksLikeItsBakedCopy) {
 }
 
 TEST(InstanceRender, NaiveTracerRendersInstancesLikeEmbree) {
-    const SceneDesc desc =
-        parseSceneFile(test::sourceDir() / "scenes/regression/instances.json");
+    SceneDesc desc = parseSceneFile(test::sourceDir() / "scenes/regression/instances.json");
+    test::shrinkFilmWhenSanitized(desc, 3);  // naive tracer: slow under the sanitizers
     const test::Rendered a = test::render(desc, AccelKind::Embree, "primid");
     const test::Rendered b = test::render(desc, AccelKind::Naive, "primid");
     // primid colours differ per instance: equal images mean equal instance IDs.
