@@ -149,6 +149,9 @@ private:
 
     RTCGeometry newMeshGeometry(const TriangleMesh& mesh) {
         RTCGeometry geom = rtcNewGeometry(device(), RTC_GEOMETRY_TYPE_TRIANGLE);
+        // The scene's quality picks its builder, the geometry's how the mesh's
+        // own triangles are split: spatial splits (high) need both.
+        rtcSetGeometryBuildQuality(geom, quality());
         const size_t nv = mesh.vertexCount(), nt = mesh.triangleCount();
         if (mesh.isPadded()) {
             rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
@@ -199,5 +202,20 @@ std::unique_ptr<Accel> buildEmbreeAccel(std::span<const TriangleMesh* const> mes
 }
 
 const char* embreeVersion() { return RTC_VERSION_STRING; }
+
+const char* bvhQualityName(BvhQuality quality) {
+    switch (quality) {
+        case BvhQuality::Low: return "low";
+        case BvhQuality::Medium: return "medium";
+        case BvhQuality::High: return "high";
+    }
+    fail("invalid BvhQuality value ", static_cast<int>(quality));
+}
+
+BvhQuality bvhQualityFromName(const std::string& name) {
+    for (BvhQuality q : {BvhQuality::Low, BvhQuality::Medium, BvhQuality::High})
+        if (name == bvhQualityName(q)) return q;
+    fail("unknown BVH quality '", name, "' (choose low, medium or high)");
+}
 
 }  // namespace strahl

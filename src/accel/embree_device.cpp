@@ -3,6 +3,7 @@
 #include <string>
 
 #include "strahl/core/error.h"
+#include "strahl/core/process_memory.h"
 
 namespace strahl {
 
@@ -21,7 +22,9 @@ const char* errorName(RTCError code) {
 }
 }  // namespace
 
-EmbreeDevice::EmbreeDevice(int threads) {
+EmbreeDevice::EmbreeDevice(int threads, size_t limitBytes, size_t baselineBytes)
+    : limitBytes_(static_cast<long long>(limitBytes)),
+      baselineBytes_(static_cast<long long>(baselineBytes)) {
     // Explicit thread count (0 lets Embree use every hardware thread); no thread
     // pinning, since strahl shares the machine with its own oneTBB workers.
     const std::string config = "threads=" + std::to_string(threads > 0 ? threads : 0) +
@@ -45,10 +48,22 @@ void EmbreeDevice::onError(void* self, RTCError code, const char* message) {
         device->firstError_ = std::string(errorName(code)) + (message ? std::string(": ") + message : "");
 }
 
-bool EmbreeDevice::onMemory(void* self, ssize_t bytes, bool /*post*/) {
-    // Only accounting: returning false would make Embree fail the allocation.
-    static_cast<EmbreeDevice*>(self)->bytes_.fetch_add(bytes, std::memory_order_relaxed);
-    return true;
+bool EmbreeDevice::onMemory(void* self, ssize_t bytes, bool post) {
+    // Called from Embree's build threads, before an allocation (post false) or
+    // after one whose size was not known in advance (post true), and with
+    // negative bytes when memory is freed. Returning false for an allocation
+    // makes Embree stop the API call with RTC_ERROR_OUT_OF_MEMORY; before the
+    // allocation that means it never happens (so it is not counted), after it
+    // Embree frees it and reports the negative bytes (so it stays counted).
+    auto* device = static_cast<EmbreeDevice*>(self);
+    const long long held = device->bytes_.fetch_add(bytes, std::memory_order_relaxed) + bytes;
+    if (bytes <= 0 || device->limitBytes_ == 0 ||
+        device->baselineBytes_ + held <= device->limitBytes_)
+        return true;
+    if (!post) device->bytes_.fetch_sub(bytes, std::memory_order_relaxed);
+    long long none = 0;  // keep the first refusal: later ones follow from it
+    device->refusedBytes_.compare_exchange_strong(none, held, std::memory_order_relaxed);
+    return false;
 }
 
 void EmbreeDevice::check(const char* what) {
@@ -59,7 +74,14 @@ void EmbreeDevice::check(const char* what) {
     }
     const RTCError code = rtcGetDeviceError(device_);
     if (message.empty() && code != RTC_ERROR_NONE) message = errorName(code);
-    if (!message.empty()) fail("Embree: ", what, ": ", message);
+    if (message.empty()) return;
+    if (const long long refused = refusedBytes_.load(); refused > 0) {
+        fail(what, ": stopped at the memory limit of ", formatBytes(size_t(limitBytes_)),
+             ": the scene held ", formatBytes(size_t(baselineBytes_)),
+             " when the BVH build started and the BVH needed at least ",
+             formatBytes(size_t(refused)), " more; raise --memory-limit or try --compact");
+    }
+    fail("Embree: ", what, ": ", message);
 }
 
 }  // namespace strahl

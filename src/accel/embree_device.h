@@ -5,7 +5,9 @@
 // Embree, possibly on a worker thread), so the callback only records the first
 // message; check() turns it into a strahl::Error on the calling thread after
 // each Embree call that can fail. The memory monitor keeps a running total of
-// the bytes Embree allocates, which `strahl info` reports.
+// the bytes Embree allocates, which `strahl info` reports, and, given a limit,
+// refuses the allocation that would pass it: Embree then stops the call with
+// RTC_ERROR_OUT_OF_MEMORY and check() says which limit was reached.
 
 #include <embree3/rtcore.h>
 
@@ -17,7 +19,9 @@ namespace strahl {
 
 class EmbreeDevice {
 public:
-    explicit EmbreeDevice(int threads);
+    // limitBytes 0: no limit; otherwise Embree may hold at most
+    // limitBytes - baselineBytes (the rest of the process holds baselineBytes).
+    EmbreeDevice(int threads, size_t limitBytes = 0, size_t baselineBytes = 0);
     ~EmbreeDevice();
     EmbreeDevice(const EmbreeDevice&) = delete;
     EmbreeDevice& operator=(const EmbreeDevice&) = delete;
@@ -35,6 +39,8 @@ private:
 
     RTCDevice device_ = nullptr;
     std::atomic<long long> bytes_{0};
+    long long limitBytes_ = 0, baselineBytes_ = 0;
+    std::atomic<long long> refusedBytes_{0};  // Embree's bytes with the first refused allocation; 0: none
     std::mutex errorMutex_;
     std::string firstError_;
     bool native16_ = false, native8_ = false;

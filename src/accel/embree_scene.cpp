@@ -35,6 +35,15 @@ STRAHL_CHECK_PACKET_LAYOUT(8);
 STRAHL_CHECK_PACKET_LAYOUT(16);
 static_assert(kInvalidId == RTC_INVALID_GEOMETRY_ID);
 
+RTCBuildQuality embreeQuality(BvhQuality quality) {
+    switch (quality) {
+        case BvhQuality::Low: return RTC_BUILD_QUALITY_LOW;
+        case BvhQuality::Medium: return RTC_BUILD_QUALITY_MEDIUM;
+        case BvhQuality::High: return RTC_BUILD_QUALITY_HIGH;
+    }
+    fail("invalid BvhQuality value ", static_cast<int>(quality));
+}
+
 RTCIntersectContext makeContext(RayCoherence coherence) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
@@ -66,11 +75,19 @@ RTCRayHit toEmbree(const Ray& ray) {
 }  // namespace
 
 EmbreeSceneAccel::EmbreeSceneAccel(const AccelBuildOptions& options)
-    : device_(options.threads), progress_(options.progress) {
+    : device_(options.threads, options.memoryLimitBytes, options.memoryBaselineBytes),
+      progress_(options.progress),
+      quality_(embreeQuality(options.quality)),
+      flags_(options.compact ? RTC_SCENE_FLAG_COMPACT : RTC_SCENE_FLAG_NONE) {
     scene_ = rtcNewScene(device_.handle());
     device_.check("creating the scene");
-    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
+    configure(scene_);
     if (progress_) rtcSetSceneProgressMonitorFunction(scene_, &EmbreeSceneAccel::onProgress, this);
+}
+
+void EmbreeSceneAccel::configure(RTCScene scene) const {
+    rtcSetSceneBuildQuality(scene, quality_);
+    rtcSetSceneFlags(scene, flags_);
 }
 
 EmbreeSceneAccel::~EmbreeSceneAccel() {
@@ -96,7 +113,7 @@ RTCScene EmbreeSceneAccel::newPrototypeScene() {
     prototypes_.reserve(prototypes_.size() + 1);  // so push_back cannot throw and leak
     RTCScene scene = rtcNewScene(device_.handle());
     device_.check("creating a prototype scene");
-    rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_MEDIUM);
+    configure(scene);
     prototypes_.push_back(scene);
     return scene;
 }

@@ -39,11 +39,13 @@ public:
     size_t memoryBytes() const override { return device_.bytesInUse(); }
 
 protected:
-    // Creates the device (options.threads) and an empty scene of medium build
-    // quality that reports progress to options.progress.
+    // Creates the device (options.threads and memory limit) and an empty scene
+    // of options.quality (compact if asked) that reports progress to
+    // options.progress.
     explicit EmbreeSceneAccel(const AccelBuildOptions& options);
 
     RTCDevice device() const { return device_.handle(); }
+    RTCBuildQuality quality() const { return quality_; }
     // Commits `geometry`, attaches it to the top-level scene as `geomID`, drops
     // the caller's reference and throws strahl::Error "Embree: <what>: ..." if
     // Embree reported an error.
@@ -63,9 +65,13 @@ protected:
 
 private:
     static bool onProgress(void* self, double fraction);
+    // Build quality and flags of the options, for the top-level scene and prototypes.
+    void configure(RTCScene scene) const;
 
     EmbreeDevice device_;
     std::function<void(double)> progress_;
+    RTCBuildQuality quality_;
+    RTCSceneFlags flags_;
     RTCScene scene_ = nullptr;
     std::vector<RTCScene> prototypes_;
     Bounds3 bounds_;

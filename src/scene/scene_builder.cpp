@@ -14,6 +14,7 @@
 #include "light_builder.h"
 #include "material_builder.h"
 #include "strahl/core/error.h"
+#include "strahl/core/process_memory.h"
 #include "strahl/meshio/mesh_file.h"
 #include "strahl/reference/naive_accel.h"
 
@@ -282,6 +283,10 @@ World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTiming
 
     for (const LightDesc& l : desc.lights) world.lights.push_back(scene_detail::buildLight(l, desc));
     if (timings) timings->loadSeconds = secondsSince(loadStart);
+    const size_t loadedBytes = residentBytes();
+    if (options.memoryLimitBytes != 0 && loadedBytes > options.memoryLimitBytes)
+        fail(desc.file.string(), ": loading the scene took ", formatBytes(loadedBytes),
+             " of memory, more than the memory limit of ", formatBytes(options.memoryLimitBytes));
 
     const auto bvhStart = Clock::now();
     if (options.bvhStarted) options.bvhStarted();
@@ -292,6 +297,10 @@ World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTiming
         AccelBuildOptions accelOptions;
         accelOptions.threads = options.threads;
         accelOptions.progress = options.bvhProgress;
+        accelOptions.quality = options.bvhQuality;
+        accelOptions.compact = options.compact;
+        accelOptions.memoryLimitBytes = options.memoryLimitBytes;
+        accelOptions.memoryBaselineBytes = loadedBytes;
         world.accel = buildEmbreeAccel(refs, accelOptions);
     }
     if (timings) timings->bvhSeconds = secondsSince(bvhStart);

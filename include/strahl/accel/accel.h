@@ -13,6 +13,7 @@
 #include <functional>
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "strahl/core/bounds.h"
@@ -78,8 +79,26 @@ struct AccelScene {
     }
 };
 
+// Embree's BVH builders (docs/memory.md compares them): Low is the Morton
+// builder (fastest build, slower rays), Medium binned SAH (the default), High
+// SAH with spatial splits (slowest build, fastest rays, more memory).
+enum class BvhQuality { Low, Medium, High };
+
+const char* bvhQualityName(BvhQuality quality);  // "low", "medium", "high"
+// Throws strahl::Error listing the choices for anything else.
+BvhQuality bvhQualityFromName(const std::string& name);
+
 struct AccelBuildOptions {
     int threads = 0;  // 0: all hardware threads
+    BvhQuality quality = BvhQuality::Medium;
+    // Embree's compact mode: indexed triangles and smaller nodes, about half
+    // the BVH memory for somewhat slower rays (docs/memory.md).
+    bool compact = false;
+    // When not 0: Embree's allocations fail once memoryBaselineBytes plus the
+    // bytes Embree holds would pass this, and the build throws strahl::Error
+    // saying so — instead of the process being killed by the kernel.
+    size_t memoryLimitBytes = 0;
+    size_t memoryBaselineBytes = 0;  // what the process holds outside Embree
     // Called with the build's progress fraction in [0, 1], possibly from several
     // threads at once; must not throw.
     std::function<void(double)> progress;

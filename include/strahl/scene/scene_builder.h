@@ -19,6 +19,12 @@ enum class AccelKind { Embree, Naive };
 struct BuildOptions {
     int threads = 0;  // 0: all hardware threads
     AccelKind accel = AccelKind::Embree;
+    BvhQuality bvhQuality = BvhQuality::Medium;  // Embree only
+    bool compact = false;                        // Embree's compact BVH
+    // When not 0: resident memory allowed after loading, and for the process
+    // while Embree builds (its memory monitor; see AccelBuildOptions). Going
+    // past it is a strahl::Error, not a kill by the kernel.
+    size_t memoryLimitBytes = 0;
     // Called when the BVH build starts and with its progress fraction.
     std::function<void()> bvhStarted;
     std::function<void(double)> bvhProgress;
