@@ -30,14 +30,14 @@ public:
         // allocated for it.
         uint64_t total = 0;
         for (const ShapeDesc& shape : desc_.shapes) {
-            if (shape.kind == ShapeKind::Instance) total = cappedSum(total, count(shape.group));
+            if (shape.kind == ShapeKind::Instance) total = cappedSum(total, count(shape));
         }
         if (total > kMaxInstances)
             fail(desc_.file.filename().string(), ": the groups place more than ", kMaxInstances,
                  " instances (the limit, 2^24)");
         result_.instances.reserve(total);
         for (const ShapeDesc& shape : desc_.shapes) {
-            if (shape.kind == ShapeKind::Instance) place(shape.group, shape.transform);
+            if (shape.kind == ShapeKind::Instance) placeShape(shape, Mat4(1.0f));
         }
         return std::move(result_);
     }
@@ -48,22 +48,42 @@ private:
     // Sums saturate just above the limit: the exact figure does not matter
     // once it is too many, and nested groups can multiply past 2^64.
     static uint64_t cappedSum(uint64_t a, uint64_t b) { return std::min(a + b, kMaxInstances + 1); }
+    static uint64_t cappedProduct(uint64_t a, uint64_t b) {
+        // Both factors are at most kMaxInstances + 1 (2^24 + 1): no overflow.
+        return std::min(a * b, kMaxInstances + 1);
+    }
+
+    // Instances one instance shape (an array: once per placement) expands to.
+    uint64_t count(const ShapeDesc& shape) {
+        const uint64_t copies = shape.placements.empty() ? 1 : shape.placements.size();
+        return cappedProduct(std::min<uint64_t>(copies, kMaxInstances + 1), count(shape.group));
+    }
 
     // Instances one placement of `group` expands to (memoised).
     uint64_t count(size_t group) {
         if (counts_[group] != kUncounted) return counts_[group];
         uint64_t n = ownShapes_[group] ? 1 : 0;
         for (const ShapeDesc& shape : desc_.groups[group].shapes) {
-            if (shape.kind == ShapeKind::Instance) n = cappedSum(n, count(shape.group));
+            if (shape.kind == ShapeKind::Instance) n = cappedSum(n, count(shape));
         }
         return counts_[group] = n;
+    }
+
+    // An instance shape in a space that `toWorld` maps to the world.
+    void placeShape(const ShapeDesc& shape, const Mat4& toWorld) {
+        const Mat4 arrayToWorld = toWorld * shape.transform;
+        if (shape.placements.empty()) {
+            place(shape.group, arrayToWorld);
+            return;
+        }
+        for (const Mat4& placement : shape.placements) place(shape.group, arrayToWorld * placement);
     }
 
     void place(size_t group, const Mat4& toWorld) {
         if (ownShapes_[group])
             result_.instances.push_back(FlatInstance{prototype(group), toWorld});
         for (const ShapeDesc& shape : desc_.groups[group].shapes) {
-            if (shape.kind == ShapeKind::Instance) place(shape.group, toWorld * shape.transform);
+            if (shape.kind == ShapeKind::Instance) placeShape(shape, toWorld);
         }
     }
 

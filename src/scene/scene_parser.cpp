@@ -17,6 +17,8 @@
 #include <string_view>
 
 #include "implicit_parser.h"
+#include "instance_arrays.h"
+#include "instance_flattening.h"
 #include "parametric_parser.h"
 #include "json_reader.h"
 #include "material_parser.h"
@@ -255,6 +257,34 @@ struct ShapeContext {
     std::span<const std::string> groupNames;
 };
 
+// The "scatter" object of an instance array.
+scene_detail::Scatter parseScatter(const JsonValue& v) {
+    v.requireKeys({"count", "seed", "min", "max", "height", "yaw", "scale"});
+    scene_detail::Scatter scatter;
+    scatter.count = v.get("count").unsignedInteger(scene_detail::kMaxInstances);
+    if (scatter.count == 0) v.get("count").fail("an instance array needs at least one placement");
+    if (auto seed = v.find("seed")) scatter.seed = seed->unsignedInteger(UINT64_MAX);
+    scatter.min = v.get("min").vec2();
+    scatter.max = v.get("max").vec2();
+    if (!(scatter.min.x <= scatter.max.x && scatter.min.y <= scatter.max.y))
+        v.get("max").fail("must not be below 'min' in x or z");
+    if (auto height = v.find("height")) scatter.height = height->number();
+    if (auto yaw = v.find("yaw")) {
+        const Vec2 range = yaw->vec2();
+        if (!(range.x <= range.y)) yaw->fail("expected [from, to] degrees with from <= to");
+        scatter.yawMin = range.x;
+        scatter.yawMax = range.y;
+    }
+    if (auto scale = v.find("scale")) {
+        const Vec2 range = scale->vec2();
+        if (!(range.x > 0.0f && range.x <= range.y))
+            scale->fail("expected [from, to] with 0 < from <= to");
+        scatter.scaleMin = range.x;
+        scatter.scaleMax = range.y;
+    }
+    return scatter;
+}
+
 ShapeDesc parseShape(const JsonValue& v, const ShapeContext& context) {
     const fs::path& folder = context.folder;
     const std::string& label = context.label;
@@ -264,7 +294,7 @@ ShapeDesc parseShape(const JsonValue& v, const ShapeContext& context) {
     if (!v.raw().is_object()) v.fail("expected an object, got ", v.describe());
     const std::string type = v.get("type").oneOf({"mesh", "implicit", "parametric", "instance"});
     if (type == "instance") {
-        v.requireKeys({"type", "name", "group", "transform"});
+        v.requireKeys({"type", "name", "group", "transform", "placements", "scatter"});
         s.kind = ShapeKind::Instance;
         const JsonValue group = v.get("group");
         const std::string groupName = group.string();
@@ -280,6 +310,18 @@ ShapeDesc parseShape(const JsonValue& v, const ShapeContext& context) {
         s.name = s.where;
         if (auto name = v.find("name")) s.name = name->string();
         if (auto transform = v.find("transform")) s.transform = parseTransform(*transform);
+        const auto file = v.find("placements");
+        const auto scatter = v.find("scatter");
+        if (file && scatter) v.fail("give 'placements' or 'scatter', not both");
+        if (file) {
+            const fs::path path = resolveExistingFile(folder, *file, "placement file");
+            try {
+                s.placements = scene_detail::readPlacementFile(path, scene_detail::kMaxInstances);
+            } catch (const Error& e) {
+                file->fail(e.what());
+            }
+        }
+        if (scatter) s.placements = scene_detail::scatterPlacements(parseScatter(*scatter));
         return s;
     }
     if (type == "implicit") {

@@ -107,6 +107,10 @@ struct ShapeDesc {
     ImplicitShapeOptions implicitOptions;  // its box, cells and tolerance
     ParametricDesc parametric;             // kind == Parametric
     Mat4 transform{1.0f};            // object to world (in a group: to the group's space)
+    // kind == Instance: an instance array when not empty — the group placed
+    // once per matrix, at transform · placement (group space to the array's,
+    // then the array's to its parent's). From "placements" or "scatter".
+    std::vector<Mat4> placements;
     std::string material;            // empty: the file's own materials, else "default"
     std::string where;               // JSON pointer, e.g. "/shapes/0"
 };
