@@ -27,6 +27,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "strahl/meshio/gltf_camera.h"
 #include "strahl/meshio/mesh_file.h"
 #include "text_scan.h"
 
@@ -308,7 +309,8 @@ public:
         convertMaterials(result.materials);
         std::vector<PrimitiveJob> jobs;
         checkNodeGraph();
-        for (const auto& [node, world] : sceneInstances()) addJobs(node, world, jobs);
+        for (const auto& [node, world] : sceneNodes())
+            if (model_.nodes[node].mesh >= 0) addJobs(node, world, jobs);
         if (usesDefaultMaterial_) {
             MeshMaterial fallback = gltfDefaults();
             fallback.name = "default";
@@ -319,7 +321,62 @@ public:
         return result;
     }
 
+    std::vector<GltfCamera> readCameras(std::string_view bytes) {
+        parse(bytes);
+        checkExtensions();
+        checkNodeGraph();
+        std::vector<GltfCamera> cameras;
+        for (const auto& [node, world] : sceneNodes()) {
+            const tinygltf::Node& n = model_.nodes[node];
+            if (n.camera < 0) continue;
+            const std::string place = concat("nodes[", node, "]");
+            if (size_t(n.camera) >= model_.cameras.size())
+                error(place, ": camera ", n.camera, " does not exist (", model_.cameras.size(),
+                      " cameras)");
+            cameras.push_back(convertCamera(size_t(n.camera), n, world, cameras.size()));
+        }
+        return cameras;
+    }
+
 private:
+    GltfCamera convertCamera(size_t index, const tinygltf::Node& node, const glm::dmat4& world,
+                             size_t placed) const {
+        const tinygltf::Camera& c = model_.cameras[index];
+        const std::string place = concat("cameras[", index, "]: ");
+        GltfCamera out;
+        out.name = !c.name.empty()      ? c.name
+                   : !node.name.empty() ? node.name
+                                        : concat("camera ", placed);
+        const glm::dvec3 back = glm::dvec3(world * glm::dvec4(0, 0, 1, 0));
+        const glm::dvec3 up = glm::dvec3(world * glm::dvec4(0, 1, 0, 0));
+        const glm::dvec3 eye = glm::dvec3(world * glm::dvec4(0, 0, 0, 1));
+        // A scale of (nearly) zero or a shear that folds +y onto +z leaves no frame.
+        const double backLength = glm::length(back), upLength = glm::length(up);
+        if (!(backLength > 1e-12 && upLength > 1e-12) ||
+            glm::length(glm::cross(back / backLength, up / upLength)) < 1e-6 ||
+            !std::isfinite(eye.x + eye.y + eye.z))
+            error(place, "the transform of the node placing it leaves no camera frame");
+        out.eye = Vec3(eye);
+        out.back = Vec3(back / backLength);
+        out.up = Vec3(up / upLength);
+        if (c.type == "perspective") {
+            const double yfov = c.perspective.yfov;
+            if (!(yfov > 0.0 && yfov < glm::pi<double>()))
+                error(place, "perspective.yfov ", yfov, " is not in (0, pi)");
+            out.yfovDegrees = float(glm::degrees(yfov));
+        } else if (c.type == "orthographic") {
+            out.orthographic = true;
+            out.xmag = float(std::abs(c.orthographic.xmag));
+            out.ymag = float(std::abs(c.orthographic.ymag));
+            if (!(out.xmag > 0.0f && out.ymag > 0.0f && std::isfinite(out.xmag) &&
+                  std::isfinite(out.ymag)))
+                error(place, "orthographic.xmag and ymag must not be zero");
+        } else {
+            error(place, "type '", c.type, "' is neither perspective nor orthographic");
+        }
+        return out;
+    }
+
     // "file: <args>"; the arguments start with the place ("meshes[0].primitives[1]: ").
     template <typename... Args>
     [[noreturn]] void error(const Args&... args) const {
@@ -902,10 +959,10 @@ private:
         return m;
     }
 
-    // Every node of the scene with a mesh, with its world transform, parents
-    // before children. Cycles and nodes with two parents are errors: a hierarchy
-    // must be a forest, and a cycle would never end.
-    std::vector<std::pair<size_t, glm::dmat4>> sceneInstances() const {
+    // Every node of the scene with its world transform, parents before
+    // children. Cycles and nodes with two parents are errors: a hierarchy must
+    // be a forest, and a cycle would never end.
+    std::vector<std::pair<size_t, glm::dmat4>> sceneNodes() const {
         std::vector<int> roots;
         std::string rootsPlace = "root nodes";
         if (!model_.scenes.empty()) {
@@ -954,8 +1011,8 @@ private:
                 if (size_t(mesh) >= model_.meshes.size())
                     error(concat("nodes[", n, "]"), ": mesh ", mesh, " does not exist (",
                           model_.meshes.size(), " meshes)");
-                instances.emplace_back(n, world);
             }
+            instances.emplace_back(n, world);
             stack.push_back({n, world, 0});
         };
         for (size_t r = 0; r < roots.size(); ++r) {
@@ -1168,6 +1225,10 @@ LoadedMesh loadGltf(const fs::path& file) {
 
 LoadedMesh loadGltfFromMemory(std::string_view data, const fs::path& file) {
     return GltfReader(file).read(data);
+}
+
+std::vector<GltfCamera> loadGltfCameras(const fs::path& file) {
+    return GltfReader(file).readCameras(meshio::readWholeFile(file));
 }
 
 }  // namespace strahl

@@ -27,6 +27,7 @@
 #include "strahl/core/filter.h"
 #include "strahl/film/image_output.h"
 #include "strahl/integrator/integrator.h"
+#include "strahl/meshio/gltf_camera.h"
 #include "strahl/scene/scene_desc.h"
 
 namespace strahl {
@@ -66,7 +67,66 @@ ImageWindow parseWindow(const JsonValue& value) {
     return w;
 }
 
-CameraDesc parseCamera(const JsonValue& v) {
+// The thin lens keys, which every camera takes.
+void parseLens(const JsonValue& v, CameraDesc& c) {
+    if (auto aperture = v.find("aperture_radius")) {
+        c.apertureRadius = aperture->number();
+        if (!(c.apertureRadius >= 0.0f))
+            aperture->fail("must be at least 0, got ", aperture->raw().dump());
+    }
+    if (auto focus = v.find("focus_distance")) {
+        const float f = focus->number();
+        if (!(f > 0.0f)) focus->fail("must be greater than 0, got ", focus->raw().dump());
+        c.focusDistance = f;
+    }
+}
+
+// A camera a glTF file places: "gltf" names the file, "gltf_camera" the camera
+// (an index among the placed cameras, or a camera's or node's name; default 0).
+CameraDesc parseGltfCamera(const JsonValue& v, const fs::path& folder) {
+    v.requireKeys({"gltf", "gltf_camera", "aperture_radius", "focus_distance"});
+    const JsonValue file = v.get("gltf");
+    const fs::path path = resolveExistingFile(folder, file, "glTF file");
+    std::vector<GltfCamera> cameras;
+    try {
+        cameras = loadGltfCameras(path);
+    } catch (const Error& e) {
+        file.fail(e.what());
+    }
+    if (cameras.empty()) file.fail(path.filename().string(), " places no camera in its scene");
+    size_t chosen = 0;
+    if (auto which = v.find("gltf_camera")) {
+        if (which->raw().is_string()) {
+            const std::string name = which->string();
+            const auto found = std::find_if(cameras.begin(), cameras.end(),
+                                            [&](const GltfCamera& c) { return c.name == name; });
+            if (found == cameras.end()) {
+                std::string names;
+                for (const GltfCamera& c : cameras) names += (names.empty() ? "" : ", ") + c.name;
+                which->fail("no camera named '", name, "' (the file has: ", names, ")");
+            }
+            chosen = size_t(found - cameras.begin());
+        } else {
+            chosen = size_t(which->unsignedInteger(cameras.size() - 1));
+        }
+    }
+    const GltfCamera& g = cameras[chosen];
+    CameraDesc c;
+    c.eye = g.eye;
+    c.back = g.back;
+    c.up = g.up;
+    if (g.orthographic) {
+        c.projection = Projection::Orthographic;
+        c.window = ImageWindow{-g.xmag, g.xmag, -g.ymag, g.ymag};
+    } else {
+        c.fovYDegrees = g.yfovDegrees;
+    }
+    parseLens(v, c);
+    return c;
+}
+
+CameraDesc parseCamera(const JsonValue& v, const fs::path& folder) {
+    if (v.has("gltf")) return parseGltfCamera(v, folder);
     v.requireKeys({"type", "eye", "look_at", "back", "up", "focal_distance", "fov", "window",
                    "aperture_radius", "focus_distance"});
     CameraDesc c;
@@ -114,16 +174,7 @@ CameraDesc parseCamera(const JsonValue& v) {
         c.fovYDegrees = degrees;
     }
     if (auto window = v.find("window")) c.window = parseWindow(*window);
-    if (auto aperture = v.find("aperture_radius")) {
-        c.apertureRadius = aperture->number();
-        if (!(c.apertureRadius >= 0.0f))
-            aperture->fail("must be at least 0, got ", aperture->raw().dump());
-    }
-    if (auto focus = v.find("focus_distance")) {
-        const float f = focus->number();
-        if (!(f > 0.0f)) focus->fail("must be greater than 0, got ", focus->raw().dump());
-        c.focusDistance = f;
-    }
+    parseLens(v, c);
 
     if (!c.fovYDegrees && !c.window) {
         if (c.projection == Projection::Perspective)
@@ -523,7 +574,8 @@ SceneDesc parseSceneText(const std::string& text, const fs::path& file) {
 
     // The camera's defaults depend on each other, so it is parsed even when absent.
     const nlohmann::json noCamera = nlohmann::json::object();
-    scene.camera = parseCamera(root.find("camera").value_or(JsonValue(noCamera, "/camera", label)));
+    scene.camera =
+        parseCamera(root.find("camera").value_or(JsonValue(noCamera, "/camera", label)), folder);
     if (auto film = root.find("film")) scene.film = parseFilm(*film, folder);
     if (auto render = root.find("render")) scene.render = parseRender(*render);
     if (auto background = root.find("background")) scene.background = background->color();
