@@ -301,7 +301,11 @@ World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTiming
         accelOptions.compact = options.compact;
         accelOptions.memoryLimitBytes = options.memoryLimitBytes;
         accelOptions.memoryBaselineBytes = loadedBytes;
-        world.accel = buildEmbreeAccel(refs, accelOptions);
+        try {
+            world.accel = buildEmbreeAccel(refs, accelOptions);
+        } catch (const Error& e) {
+            fail(desc.file.string(), ": ", e.what());  // a memory limit, say: name the scene
+        }
     }
     if (timings) timings->bvhSeconds = secondsSince(bvhStart);
     world.prepareLights();
