@@ -1,15 +1,25 @@
-// Wavefront OBJ loader with its .mtl material libraries. The file is read into
-// memory at once and scanned line by line with std::from_chars; what is and is
-// not supported is listed in docs/mesh-formats.md, the .mtl keys read in
-// docs/mesh-files.md.
+// Wavefront OBJ loader with its .mtl material libraries (mtl_reader.h). The
+// text is cut into chunks at line ends and the chunks are parsed in parallel
+// (obj_chunks.h); then, in file order, this file joins them: .mtl libraries are
+// read and warnings given where their statements are, each face's material
+// slot follows the usemtl statements before it, and every corner gets its
+// output vertex from one table of distinct (v, vt, vn) triples, so vertices are
+// numbered as a line-by-line reader would number them. The result and the
+// first error are the same for any chunk size and thread count. What is and is
+// not supported: docs/mesh-formats.md; the .mtl keys: docs/mesh-files.md.
+
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cstring>
 #include <set>
 #include <unordered_map>
 #include <utility>
 
+#include "loader_tuning.h"
+#include "mapped_file.h"
+#include "mtl_reader.h"
+#include "obj_chunks.h"
 #include "strahl/meshio/mesh_file.h"
 #include "text_scan.h"
 
@@ -20,223 +30,14 @@ namespace strahl {
 namespace {
 
 using meshio::LineScanner;
+using meshio::obj::Chunk;
+using meshio::obj::Corner;
+using meshio::obj::kNone;
 
-constexpr uint32_t kNone = UINT32_MAX;
-
-// Calls fn(scanner) for every line of `text` (line numbers start at 1).
-template <typename Fn>
-void forEachLine(const std::string& file, std::string_view text, Fn&& fn) {
-    const char* p = text.data();
-    const char* const end = p + text.size();
-    for (size_t line = 1; p < end; ++line) {
-        const char* eol = static_cast<const char*>(std::memchr(p, '\n', size_t(end - p)));
-        if (eol == nullptr) eol = end;
-        LineScanner scanner{file, line, p, eol};
-        fn(scanner);
-        p = eol + (eol < end ? 1 : 0);
-    }
-}
-
-// ---------------------------------------------------------------------------
-// .mtl material libraries
-
-using MaterialLibrary = std::unordered_map<std::string, MeshMaterial>;
-
-// Kd / Ks / Ke / Tf: one value (grey) or three.
-Color readColor(LineScanner& s, const char* what) {
-    const float r = s.finiteFloat(what);
-    if (s.atEnd()) return Color(r);
-    const float g = s.finiteFloat(what);
-    const float b = s.finiteFloat(what);
-    s.expectEnd(what);
-    return Color(r, g, b);
-}
-
-// Ns / Ni / d / Tr: exactly one number.
-float readScalar(LineScanner& s, const char* what) {
-    const float value = s.finiteFloat(what);
-    s.expectEnd(what);
-    return value;
-}
-
-bool isNumber(std::string_view token) {
-    double value = 0.0;
-    const auto [next, ec] = meshio::parseNumber(token.data(), token.data() + token.size(), value);
-    return ec == std::errc() && next == token.data() + token.size();
-}
-
-// Skips the options in front of a texture file name ("-bm 0.5", "-o 1 1 0",
-// "-clamp on", ...): each takes one argument, then as many further numeric
-// arguments as it allows. Returns the rest of the line.
-std::string_view skipTextureOptions(LineScanner& s) {
-    static constexpr std::pair<std::string_view, int> kOptions[] = {
-        {"-blendu", 1}, {"-blendv", 1},  {"-bm", 1},  {"-boost", 1}, {"-cc", 1},
-        {"-clamp", 1},  {"-imfchan", 1}, {"-mm", 2},  {"-o", 3},     {"-s", 3},
-        {"-t", 3},      {"-texres", 1},  {"-type", 1}};
-    for (;;) {
-        const char* start = s.p;
-        const std::string_view option = s.token();
-        int maxArgs = 0;
-        for (const auto& [name, count] : kOptions) {
-            if (option == name) maxArgs = count;
-        }
-        if (maxArgs == 0) {
-            s.p = start;
-            return s.rest();
-        }
-        s.token();
-        for (int i = 1; i < maxArgs; ++i) {
-            const char* argStart = s.p;
-            if (!isNumber(s.token())) {
-                s.p = argStart;
-                break;
-            }
-        }
-    }
-}
-
-// Resolves a texture name next to the .mtl: the whole rest of the line first
-// (names may hold spaces), then its last token (options this reader does not
-// know end up in front of the name).
-fs::path resolveTexture(const fs::path& dir, std::string_view rest) {
-    fs::path found = findFileCaseInsensitive(dir, std::string(rest));
-    const size_t lastBlank = rest.find_last_of(" \t");
-    if (found.empty() && lastBlank != std::string_view::npos)
-        found = findFileCaseInsensitive(dir, std::string(rest.substr(lastBlank + 1)));
-    return found;
-}
-
-// The .mtl texture statements strahl reads, and the MeshMaterial field each fills.
-// map_Bump / bump are not here on purpose: in most OBJ files (Sponza, Sibenik)
-// they name grey height maps, which are no tangent-space normal maps.
-struct TextureKey {
-    std::string_view keyword;
-    fs::path MeshMaterial::*field;
-    const char* what;  // for the warning: "gets no <what> texture"
-};
-constexpr TextureKey kTextureKeys[] = {
-    {"map_Kd", &MeshMaterial::diffuseTexture, "diffuse"},
-    {"map_Ke", &MeshMaterial::emissionTexture, "emission"},
-    {"norm", &MeshMaterial::normalTexture, "normal"},
-};
-
-class MaterialLibraryReader {
-public:
-    MaterialLibraryReader(const fs::path& mtlFile, MaterialLibrary& library)
-        : name_(mtlFile.string()), dir_(mtlFile.parent_path()), library_(library) {}
-
-    void read(std::string_view text) {
-        forEachLine(name_, text, [this](LineScanner& s) { statement(s); });
-    }
-
-private:
-    void statement(LineScanner& s) {
-        const std::string_view keyword = s.token();
-        if (keyword == "newmtl") {
-            const std::string_view materialName = s.rest();
-            if (materialName.empty()) s.error("newmtl without a material name");
-            auto [it, inserted] = library_.try_emplace(std::string(materialName));
-            current_ = inserted ? &it->second : &duplicate_;
-            *current_ = MeshMaterial{};
-            current_->name = materialName;
-            sawDissolve_ = false;
-            return;
-        }
-        if (current_ == nullptr) return;  // statements before the first newmtl describe nothing
-        MeshMaterial& m = *current_;
-        if (keyword == "Kd") {
-            m.diffuse = readColor(s, "Kd");
-        } else if (keyword == "Ks") {
-            m.specular = readColor(s, "Ks");
-        } else if (keyword == "Ke") {
-            m.emission = readColor(s, "Ke");
-        } else if (keyword == "Tf") {
-            m.transmission = readColor(s, "Tf");
-        } else if (keyword == "Ns") {
-            m.shininess = readScalar(s, "Ns");
-            if (m.shininess < 0.0f) {
-                warnValue(s, "Ns", m.shininess, "is negative; using 0");
-                m.shininess = 0.0f;
-            }
-        } else if (keyword == "Ni") {
-            const float ior = readScalar(s, "Ni");
-            // Some exporters write "Ni 0" for "not set"; an IOR must be positive.
-            if (ior > 0.0f)
-                m.ior = ior;
-            else
-                warnValue(s, "Ni", ior, "is not positive; using 1.5");
-        } else if (keyword == "d") {
-            // "d -halo f" (dissolve depending on the view angle): read as plain d.
-            const char* start = s.p;
-            if (s.token() != "-halo") s.p = start;
-            m.dissolve = unitInterval(s, "d", readScalar(s, "d"));
-            sawDissolve_ = true;
-        } else if (keyword == "Tr") {
-            // Tr is the transparency 1 - d; when a material has both, d wins
-            // whatever their order (exporters write both, consistently).
-            const float tr = unitInterval(s, "Tr", readScalar(s, "Tr"));
-            if (!sawDissolve_) m.dissolve = 1.0f - tr;
-        } else if (keyword == "illum") {
-            const double model = s.number("illum");
-            s.expectEnd("illum");
-            // The MTL specification defines illumination models 0 to 10.
-            if (model >= 0.0 && model <= 10.0 && model == std::floor(model))
-                m.illum = static_cast<int>(model);
-            else
-                warnValue(s, "illum", model, "is not a model 0..10; using 2");
-        } else {
-            for (const TextureKey& key : kTextureKeys) {
-                if (keyword == key.keyword) texture(s, key);
-            }
-        }
-    }
-
-    void texture(LineScanner& s, const TextureKey& key) {
-        const std::string_view textureName = skipTextureOptions(s);
-        if (textureName.empty()) s.error(key.keyword, " without a file name");
-        fs::path& field = current_->*key.field;
-        field = resolveTexture(dir_, textureName);
-        if (field.empty())
-            meshio::warn(concat(name_, ':', s.line, ": texture '", textureName,
-                                "' not found; material '", current_->name, "' gets no ", key.what,
-                                " texture"));
-    }
-
-    // d and Tr outside [0, 1] are clamped with a warning.
-    float unitInterval(LineScanner& s, const char* what, float value) {
-        if (value >= 0.0f && value <= 1.0f) return value;
-        const float clamped = std::clamp(value, 0.0f, 1.0f);
-        warnValue(s, what, value, concat("is outside [0, 1]; using ", clamped));
-        return clamped;
-    }
-
-    void warnValue(const LineScanner& s, const char* what, double value,
-                   const std::string& problem) const {
-        meshio::warn(concat(name_, ':', s.line, ": ", what, ' ', value, ' ', problem,
-                            " (material '", current_->name, "')"));
-    }
-
-    std::string name_;
-    fs::path dir_;
-    MaterialLibrary& library_;
-    MeshMaterial duplicate_;  // absorbs a repeated newmtl: the first definition wins
-    MeshMaterial* current_ = nullptr;
-    bool sawDissolve_ = false;  // the current material has a d statement
-};
-
-void readMaterialLibrary(const fs::path& mtlFile, MaterialLibrary& library) {
-    MaterialLibraryReader(mtlFile, library).read(meshio::readWholeFile(mtlFile));
-}
-
-// ---------------------------------------------------------------------------
-// OBJ
-
-// One face corner: indices into the v, vt and vn arrays (kNone when absent).
-struct Corner {
-    uint32_t v = kNone;
-    uint32_t vt = kNone;
-    uint32_t vn = kNone;
-};
+// Chunks of 1 MiB: a 30 MB OBJ makes 30 tasks, enough to keep 2-16 threads
+// busy to the end, while each chunk's arrays and its task cost next to nothing
+// against the ~5 ms it takes to parse.
+constexpr size_t kChunkBytes = size_t(1) << 20;
 
 // The distinct corners, each of which becomes one output vertex. Corners are
 // chained per position index: few corners share a position, so a lookup walks
@@ -263,8 +64,30 @@ class ObjReader {
 public:
     explicit ObjReader(const fs::path& file) : path_(file), name_(file.string()) {}
 
-    LoadedMesh read(std::string_view text) {
-        forEachLine(name_, text, [this](LineScanner& s) { statement(s); });
+    LoadedMesh read(std::string_view text, size_t chunkBytes) {
+        std::vector<Chunk> chunks = meshio::obj::splitIntoChunks(text, chunkBytes);
+        // Pass 1 counts v/vt/vn per chunk; their running sums are what relative
+        // indices in each chunk are resolved against in pass 2.
+        tbb::parallel_for(size_t(0), chunks.size(),
+                          [&](size_t i) { meshio::obj::countStatements(chunks[i]); });
+        for (size_t i = 1; i < chunks.size(); ++i) {
+            const Chunk& previous = chunks[i - 1];
+            chunks[i].firstLine = previous.firstLine + previous.lines;
+            chunks[i].before = {previous.before.v + previous.own.v,
+                                previous.before.vt + previous.own.vt,
+                                previous.before.vn + previous.own.vn};
+        }
+        if (!chunks.empty()) {
+            const Chunk& last = chunks.back();
+            attributes_.positions.resize(last.before.v + last.own.v);
+            attributes_.texcoords.resize(last.before.vt + last.own.vt);
+            attributes_.normals.resize(last.before.vn + last.own.vn);
+        }
+        tbb::parallel_for(size_t(0), chunks.size(), [&](size_t i) {
+            meshio::obj::parseChunk(name_, chunks[i], attributes_);
+        });
+        reserve(chunks);
+        for (const Chunk& chunk : chunks) join(chunk);
         return finish();
     }
 
@@ -274,98 +97,65 @@ private:
         size_t line = 0;   // first usemtl naming it, for warnings
     };
 
-    void statement(LineScanner& s) {
-        const std::string_view keyword = s.token();
-        if (keyword == "v") {
-            Vec3 p(0.0f);
-            p.x = s.finiteFloat("coordinate");
-            p.y = s.finiteFloat("coordinate");
-            p.z = s.finiteFloat("coordinate");
-            while (!s.atEnd()) s.number("vertex value");  // w or a vertex colour: unused
-            positions_.push_back(p);
-        } else if (keyword == "vt") {
-            Vec2 uv(0.0f);  // a missing v is 0
-            uv.x = s.finiteFloat("texture coordinate");
-            if (!s.atEnd()) uv.y = s.finiteFloat("texture coordinate");
-            if (!s.atEnd()) s.number("texture coordinate");  // w: unused
-            s.expectEnd("vt");
-            texcoords_.push_back(uv);
-        } else if (keyword == "vn") {
-            Vec3 n(0.0f);
-            n.x = s.finiteFloat("normal coordinate");
-            n.y = s.finiteFloat("normal coordinate");
-            n.z = s.finiteFloat("normal coordinate");
-            s.expectEnd("vn");
-            normals_.push_back(n);
-        } else if (keyword == "f") {
-            face(s);
-        } else if (keyword == "usemtl") {
-            const std::string_view material = s.rest();
-            if (material.empty()) s.error("usemtl without a material name");
-            currentName_ = material;
-            currentLine_ = s.line;
-            currentSlot_ = kNone;
-        } else if (keyword == "mtllib") {
-            materialLibraries(s);
-        } else if (keyword.empty() || keyword[0] == '#' || keyword == "o" || keyword == "g" ||
-                   keyword == "s" || keyword == "l" || keyword == "p" || keyword == "vp") {
-            return;  // comments, grouping, smoothing, lines, points: nothing to render
-        } else if (ignoredKeywords_.insert(std::string(keyword)).second) {
-            meshio::warn(concat(name_, ':', s.line, ": ignoring unsupported statement '", keyword,
-                                "' (reported once)"));
-        }
+    void reserve(const std::vector<Chunk>& chunks) {
+        size_t corners = 0;
+        for (const Chunk& c : chunks) corners += c.corners.size();
+        const size_t v = attributes_.positions.size();
+        table_.head.assign(v, kNone);
+        // Most files have one corner per position (distinct corners may be fewer,
+        // or more when positions carry several uvs or normals).
+        table_.corners.reserve(std::min(corners, v));
+        table_.next.reserve(std::min(corners, v));
     }
 
-    // Parses one index of the corner starting at `corner`: 1-based, or negative =
-    // relative to the end.
-    uint32_t index(LineScanner& s, const char* corner, size_t count, const char* what) {
-        int64_t i = 0;
-        const auto [next, ec] = meshio::parseNumber(s.p, s.end, i);
-        if (ec != std::errc()) {
-            s.p = corner;
-            s.error("cannot parse ", what, " index in face corner '", s.token(), "'");
+    // Adds one parsed chunk, in file order, doing what depends on everything
+    // before it; rethrows its error after its earlier statements took effect.
+    void join(const Chunk& chunk) {
+        for (const meshio::obj::Deferred& d : chunk.deferred) {
+            if (d.kind == meshio::obj::Deferred::Kind::MaterialLibrary) {
+                LineScanner s{name_, d.line, d.text.data(), d.text.data() + d.text.size()};
+                materialLibraries(s);
+            } else if (ignoredKeywords_.insert(std::string(d.text)).second) {
+                meshio::warn(concat(name_, ':', d.line, ": ignoring unsupported statement '",
+                                    d.text, "' (reported once)"));
+            }
         }
-        s.p = next;
-        if (i == 0) s.error(what, " index 0 is invalid (OBJ indices start at 1)");
-        const int64_t resolved = i > 0 ? i - 1 : int64_t(count) + i;
-        if (resolved < 0 || resolved >= int64_t(count))
-            s.error(what, " index ", i, " is out of range (", count, " defined so far)");
-        return static_cast<uint32_t>(resolved);
+        if (chunk.error) std::rethrow_exception(chunk.error);
+
+        cornerWithUv_ |= chunk.cornerWithUv;
+        cornerWithoutUv_ |= chunk.cornerWithoutUv;
+        cornerWithNormal_ |= chunk.cornerWithNormal;
+        cornerWithoutNormal_ |= chunk.cornerWithoutNormal;
+
+        uint32_t use = 0;  // usemtl statements of this chunk in effect
+        const Corner* corner = chunk.corners.data();
+        for (size_t f = 0; f < chunk.faceSizes.size(); ++f) {
+            if (chunk.faceUse[f] != use) {
+                use = chunk.faceUse[f];
+                useMaterial(chunk.usemtl[use - 1]);
+            }
+            polygon_.clear();
+            for (uint32_t k = 0; k < chunk.faceSizes[f]; ++k) {
+                if (table_.corners.size() == kNone)
+                    fail(name_, ':', meshio::obj::lineOfFace(name_, chunk, f),
+                         ": more than 2^32-1 distinct vertices");
+                polygon_.push_back(table_.insert(*corner++));
+            }
+            if (currentSlot_ == kNone) currentSlot_ = slot(currentName_, currentLine_);
+            // Fan triangulation keeps the polygon's winding (convex polygons only).
+            for (size_t i = 1; i + 1 < polygon_.size(); ++i) {
+                indices_.insert(indices_.end(), {polygon_[0], polygon_[i], polygon_[i + 1]});
+                faceSlots_.push_back(currentSlot_);
+            }
+        }
+        // A usemtl after the chunk's last face still holds for the next chunk.
+        if (!chunk.usemtl.empty() && use != chunk.usemtl.size()) useMaterial(chunk.usemtl.back());
     }
 
-    void face(LineScanner& s) {
-        polygon_.clear();
-        while (!s.atEnd()) {
-            const char* start = s.p;
-            Corner c;
-            c.v = index(s, start, positions_.size(), "vertex");
-            if (s.p < s.end && *s.p == '/') {
-                ++s.p;
-                if (s.p == s.end || *s.p != '/')
-                    c.vt = index(s, start, texcoords_.size(), "texture");
-                if (s.p < s.end && *s.p == '/') {
-                    ++s.p;
-                    c.vn = index(s, start, normals_.size(), "normal");
-                }
-            }
-            if (s.p < s.end && !meshio::isBlank(*s.p)) {
-                s.p = start;
-                s.error("malformed face corner '", s.token(), "'");
-            }
-            (c.vt == kNone ? cornerWithoutUv_ : cornerWithUv_) = true;
-            (c.vn == kNone ? cornerWithoutNormal_ : cornerWithNormal_) = true;
-            if (table_.corners.size() == kNone) s.error("more than 2^32-1 distinct vertices");
-            polygon_.push_back(table_.insert(c));
-        }
-        if (polygon_.size() < 3)
-            s.error("face with ", polygon_.size(), " vertices (needs at least 3)");
-
-        if (currentSlot_ == kNone) currentSlot_ = slot(currentName_, currentLine_);
-        // Fan triangulation keeps the polygon's winding (convex polygons only).
-        for (size_t i = 1; i + 1 < polygon_.size(); ++i) {
-            indices_.insert(indices_.end(), {polygon_[0], polygon_[i], polygon_[i + 1]});
-            faceSlots_.push_back(currentSlot_);
-        }
+    void useMaterial(const meshio::obj::UseMaterial& u) {
+        currentName_ = u.name;
+        currentLine_ = u.line;
+        currentSlot_ = kNone;
     }
 
     uint32_t slot(const std::string& material, size_t line) {
@@ -394,7 +184,7 @@ private:
                 meshio::warn(concat(name_, ':', s.line, ": material library '", libraryName,
                                     "' not found; its materials get default values"));
             } else if (loadedLibraries_.insert(file).second) {
-                readMaterialLibrary(file, library_);
+                meshio::readMaterialLibrary(file, library_);
             }
         }
     }
@@ -448,9 +238,9 @@ private:
         if (keepUvs) mesh.uvs.reserve(n);
         if (keepNormals) mesh.normals.reserve(n);
         for (const Corner& c : table_.corners) {
-            mesh.positions.push_back(positions_[c.v]);
-            if (keepUvs) mesh.uvs.push_back(texcoords_[c.vt]);
-            if (keepNormals) mesh.normals.push_back(normals_[c.vn]);
+            mesh.positions.push_back(attributes_.positions[c.v]);
+            if (keepUvs) mesh.uvs.push_back(attributes_.texcoords[c.vt]);
+            if (keepNormals) mesh.normals.push_back(attributes_.normals[c.vn]);
         }
         mesh.indices = std::move(indices_);
         // Only the implicit default slot in use: the file assigns no materials.
@@ -467,13 +257,11 @@ private:
     fs::path path_;
     std::string name_;
 
-    std::vector<Vec3> positions_;
-    std::vector<Vec2> texcoords_;
-    std::vector<Vec3> normals_;
+    meshio::obj::Attributes attributes_;  // every v, vt, vn of the file
     CornerTable table_;
     std::vector<uint32_t> indices_;
     std::vector<uint32_t> faceSlots_;
-    std::vector<uint32_t> polygon_;  // corners of the face being parsed
+    std::vector<uint32_t> polygon_;  // corners of the face being joined
     bool cornerWithUv_ = false;
     bool cornerWithoutUv_ = false;
     bool cornerWithNormal_ = false;
@@ -485,19 +273,28 @@ private:
     uint32_t currentSlot_ = kNone;
     std::vector<Slot> slots_;
     std::unordered_map<std::string, uint32_t> slotByName_;
-    MaterialLibrary library_;
+    meshio::MaterialLibrary library_;
     std::set<fs::path> loadedLibraries_;
     std::set<std::string> ignoredKeywords_;
 };
 
 }  // namespace
 
+namespace meshio {
+
+LoadedMesh decodeObj(std::string_view data, const fs::path& file, size_t chunkBytes) {
+    return ObjReader(file).read(data, chunkBytes);
+}
+
+}  // namespace meshio
+
 LoadedMesh loadObj(const fs::path& file) {
-    return loadObjFromMemory(meshio::readWholeFile(file), file);
+    const meshio::MappedFile mapping(file);
+    return meshio::decodeObj(mapping.bytes(), file, kChunkBytes);
 }
 
 LoadedMesh loadObjFromMemory(std::string_view data, const fs::path& file) {
-    return ObjReader(file).read(data);
+    return meshio::decodeObj(data, file, kChunkBytes);
 }
 
 }  // namespace strahl

@@ -1,12 +1,13 @@
 #pragma once
 // Internal helpers shared by the OBJ, MTL and PLY readers: whole-file reading,
 // warnings, and strict whitespace/number scanning with std::from_chars (no
-// locale, no allocation). Not part of the public meshio interface.
+// locale, no allocation), line by line. Not part of the public meshio interface.
 
 #include <charconv>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -109,5 +110,19 @@ struct LineScanner {
         return f;
     }
 };
+
+// Calls fn(scanner) for every line of `text`, numbering them from `firstLine`.
+template <typename Fn>
+void forEachLine(const std::string& file, std::string_view text, Fn&& fn, size_t firstLine = 1) {
+    const char* p = text.data();
+    const char* const end = p + text.size();
+    for (size_t line = firstLine; p < end; ++line) {
+        const char* eol = static_cast<const char*>(std::memchr(p, '\n', size_t(end - p)));
+        if (eol == nullptr) eol = end;
+        LineScanner scanner{file, line, p, eol};
+        fn(scanner);
+        p = eol + (eol < end ? 1 : 0);
+    }
+}
 
 }  // namespace strahl::meshio
