@@ -14,7 +14,8 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr char kMagic[8] = {'S', 'T', 'R', 'A', 'H', 'L', 'C', 'K'};
-constexpr uint32_t kVersion = 1;
+// 2: exact fixed-point sums (film/exact_sum.h) instead of float sums.
+constexpr uint32_t kVersion = 2;
 // Fingerprints are a few hundred bytes; anything larger is not ours.
 constexpr uint32_t kMaxFingerprint = 1u << 16;
 

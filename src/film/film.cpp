@@ -1,6 +1,7 @@
 #include "strahl/film/film.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <tuple>
 #include <type_traits>
@@ -19,6 +20,20 @@ constexpr std::string_view kAovNames[] = {"normal",   "depth",    "albedo",
                                           "position", "objectid", "variance"};  // enum order
 
 constexpr float kNoObject = -1.0f;  // the objectid of a miss: no id is negative
+
+void addTo(ExactSum3& sum, const Vec3& v) {
+    sum[0].add(v.x);
+    sum[1].add(v.y);
+    sum[2].add(v.z);
+}
+
+Vec3 meanOf(const ExactSum3& sum, uint32_t n) {
+    return Vec3(sum[0].mean(n), sum[1].mean(n), sum[2].mean(n));
+}
+
+void addTo(ExactSum3& sum, const ExactSum3& other) {
+    for (size_t c = 0; c < 3; ++c) sum[c] += other[c];
+}
 }  // namespace
 
 std::span<const std::string_view> aovNames() { return kAovNames; }
@@ -68,23 +83,23 @@ Film::Film(int fullWidth, int fullHeight, PixelRect crop, std::vector<AovKind> a
     }
 
     const size_t pixels = static_cast<size_t>(crop_.width()) * static_cast<size_t>(crop_.height());
-    radiance_.assign(pixels, Color(0.0f));
+    radiance_.assign(pixels, ExactSum3{});
     samples_.assign(pixels, 0u);
     // AOV buffers exist only when requested; an empty buffer means "not stored".
     for (AovKind kind : aovs_) {
         switch (kind) {
             case AovKind::Normal:
-                normal_.assign(pixels, Vec3(0.0f));
+                normal_.assign(pixels, ExactSum3{});
                 break;
             case AovKind::Depth:
-                depth_.assign(pixels, 0.0f);
+                depth_.assign(pixels, ExactSum{});
                 hits_.assign(pixels, 0u);
                 break;
             case AovKind::Albedo:
-                albedo_.assign(pixels, Color(0.0f));
+                albedo_.assign(pixels, ExactSum3{});
                 break;
             case AovKind::Position:
-                position_.assign(pixels, Vec3(0.0f));
+                position_.assign(pixels, ExactSum3{});
                 hits_.assign(pixels, 0u);
                 break;
             case AovKind::ObjectId:
@@ -106,7 +121,7 @@ size_t Film::index(int x, int y) const {
 void Film::addSample(int x, int y, const Color& radiance, const AovSample& aov) {
     const size_t i = index(x, y);
     const bool first = samples_[i] == 0;
-    radiance_[i] += radiance;
+    addTo(radiance_[i], radiance);
     ++samples_[i];
     if (!m2_.empty()) {
         // Welford: the mean moves by delta / n, M2 grows by delta (x - mean_new).
@@ -119,19 +134,18 @@ void Film::addSample(int x, int y, const Color& radiance, const AovSample& aov) 
     if (first && !objectId_.empty() && aov.hit)
         objectId_[i] = static_cast<float>(aov.objectId);
     if (!aov.hit) return;  // a miss adds 0 to the normal and albedo sums, no depth or position
-    if (!normal_.empty()) normal_[i] += aov.normal;
-    if (!albedo_.empty()) albedo_[i] += aov.albedo;
-    if (!depth_.empty()) depth_[i] += aov.depth;
-    if (!position_.empty()) position_[i] += aov.position;
+    if (!normal_.empty()) addTo(normal_[i], aov.normal);
+    if (!albedo_.empty()) addTo(albedo_[i], aov.albedo);
+    if (!depth_.empty()) depth_[i].add(aov.depth);
+    if (!position_.empty()) addTo(position_[i], aov.position);
     if (!hits_.empty()) ++hits_[i];
 }
 
 std::vector<float> Film::resolveBeauty() const {
     std::vector<float> out(radiance_.size() * 3);
     for (size_t i = 0; i < radiance_.size(); ++i) {
-        // A pixel without samples resolves to black rather than 0/0.
-        const Color mean =
-            samples_[i] > 0 ? radiance_[i] / static_cast<float>(samples_[i]) : Color(0.0f);
+        // A pixel without samples resolves to black rather than 0/0 (ExactSum::mean).
+        const Color mean = meanOf(radiance_[i], samples_[i]);
         out[3 * i + 0] = mean.r;
         out[3 * i + 1] = mean.g;
         out[3 * i + 2] = mean.b;
@@ -151,19 +165,19 @@ std::vector<float> Film::resolveAov(AovKind kind) const {
         Vec3 value(0.0f);
         switch (kind) {
             case AovKind::Depth:
-                px[0] = hits_[i] > 0 ? depth_[i] / static_cast<float>(hits_[i]) : kInfinity;
+                px[0] = hits_[i] > 0 ? depth_[i].mean(hits_[i]) : kInfinity;
                 continue;
             case AovKind::ObjectId:
                 px[0] = objectId_[i];
                 continue;
             case AovKind::Normal:
-                if (samples_[i] > 0) value = normal_[i] / n;
+                value = meanOf(normal_[i], samples_[i]);
                 break;
             case AovKind::Albedo:
-                if (samples_[i] > 0) value = albedo_[i] / n;
+                value = meanOf(albedo_[i], samples_[i]);
                 break;
             case AovKind::Position:
-                if (hits_[i] > 0) value = position_[i] / static_cast<float>(hits_[i]);
+                value = meanOf(position_[i], hits_[i]);
                 break;
             case AovKind::Variance:
                 // Sample variance M2 / (n - 1), divided by n for the variance of the
@@ -176,6 +190,79 @@ std::vector<float> Film::resolveAov(AovKind kind) const {
         px[2] = value.z;
     }
     return out;
+}
+
+FilmPixel Film::pixel(int x, int y) const {
+    if (!crop_.contains(PixelRect{x, y, x + 1, y + 1})) fail("film: pixel outside the crop window");
+    const size_t i = index(x, y);
+    FilmPixel p;
+    p.samples = samples_[i];
+    p.radiance = radiance_[i];
+    if (!hits_.empty()) p.hits = hits_[i];
+    if (!normal_.empty()) p.normal = normal_[i];
+    if (!depth_.empty()) p.depth = depth_[i];
+    if (!albedo_.empty()) p.albedo = albedo_[i];
+    if (!position_.empty()) p.position = position_[i];
+    if (!objectId_.empty()) p.objectId = objectId_[i];
+    if (!mean_.empty()) p.mean = mean_[i];
+    if (!m2_.empty()) p.m2 = m2_[i];
+    return p;
+}
+
+void Film::setPixel(int x, int y, const FilmPixel& p) {
+    if (!crop_.contains(PixelRect{x, y, x + 1, y + 1})) fail("film: pixel outside the crop window");
+    const size_t i = index(x, y);
+    samples_[i] = p.samples;
+    radiance_[i] = p.radiance;
+    if (!hits_.empty()) hits_[i] = p.hits;
+    if (!normal_.empty()) normal_[i] = p.normal;
+    if (!depth_.empty()) depth_[i] = p.depth;
+    if (!albedo_.empty()) albedo_[i] = p.albedo;
+    if (!position_.empty()) position_[i] = p.position;
+    if (!objectId_.empty()) objectId_[i] = p.objectId;
+    if (!mean_.empty()) mean_[i] = p.mean;
+    if (!m2_.empty()) m2_[i] = p.m2;
+}
+
+void Film::merge(const Film& later, const std::string& source) {
+    if (later.fullWidth_ != fullWidth_ || later.fullHeight_ != fullHeight_ ||
+        later.crop_.x0 != crop_.x0 || later.crop_.y0 != crop_.y0 || later.crop_.x1 != crop_.x1 ||
+        later.crop_.y1 != crop_.y1 || later.aovs_ != aovs_)
+        fail(source, ": cannot merge films of different size, crop window or AOVs");
+    for (size_t i = 0; i < samples_.size(); ++i) {
+        const uint32_t na = samples_[i], nb = later.samples_[i];
+        if (nb > ExactSum::kMaxSamples - na)
+            fail(source, ": merging gives a pixel more than ", ExactSum::kMaxSamples,
+                 " samples, the most the exact sums can hold");
+        addTo(radiance_[i], later.radiance_[i]);
+        samples_[i] = na + nb;
+        if (!hits_.empty()) hits_[i] += later.hits_[i];
+        if (!normal_.empty()) addTo(normal_[i], later.normal_[i]);
+        if (!depth_.empty()) depth_[i] += later.depth_[i];
+        if (!albedo_.empty()) addTo(albedo_[i], later.albedo_[i]);
+        if (!position_.empty()) addTo(position_[i], later.position_[i]);
+        // The first sample is this film's, unless it has none.
+        if (!objectId_.empty() && na == 0) objectId_[i] = later.objectId_[i];
+        if (!m2_.empty() && nb > 0) {
+            if (na == 0) {
+                mean_[i] = later.mean_[i];
+                m2_[i] = later.m2_[i];
+                continue;
+            }
+            // Chan, Golub and LeVeque's pairwise update, in double: with
+            // delta = mean_b - mean_a, mean = mean_a + delta nb / n and
+            // M2 = M2_a + M2_b + delta^2 na nb / n. The same statistics as
+            // Welford over all samples, rounded differently.
+            const double a = na, b = nb, n = a + b;
+            for (int c = 0; c < 3; ++c) {
+                const double meanA = mean_[i][c], meanB = later.mean_[i][c];
+                const double delta = meanB - meanA;
+                mean_[i][c] = static_cast<float>(meanA + delta * b / n);
+                m2_[i][c] = static_cast<float>(double(m2_[i][c]) + double(later.m2_[i][c]) +
+                                               delta * delta * a * b / n);
+            }
+        }
+    }
 }
 
 // --- checkpoint state --------------------------------------------------------

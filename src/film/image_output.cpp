@@ -111,13 +111,23 @@ void addMetadata(OIIO::ImageSpec& spec, const ImageMetadata& metadata) {
     // (p' = p M) that OpenEXR's worldToCamera (Imath::M44f) expects.
     spec.attribute("worldToCamera", OIIO::TypeMatrix44, glm::value_ptr(metadata.worldToCamera));
     for (const auto& [key, value] : metadata.extra) spec.attribute("strahl:" + key, value);
+    if (metadata.part && !metadata.part->ranges.empty()) {
+        const std::vector<SampleRange>& ranges = metadata.part->ranges;
+        spec.attribute("strahl:samples_begin", static_cast<int>(ranges.front().begin));
+        spec.attribute("strahl:samples_end", static_cast<int>(ranges.back().end));
+        spec.attribute("strahl:sample_ranges", formatRanges(ranges));
+        spec.attribute("strahl:split_fingerprint", metadata.part->fingerprint);
+    }
 }
+
+}  // namespace
 
 // EXR channel name suffixes, one per channel, after the usual conventions:
 // XYZ for vectors and points, Z for depth, RGB for colours (the variance is per
 // colour channel), and X for a single non-depth value (Blender's object index
 // pass is IndexOB.X; "Z" would make tools take the ids for depth).
-const char* channelSuffixes(AovKind kind) {
+
+const char* exrChannelSuffixes(AovKind kind) {
     switch (kind) {
         case AovKind::Normal:
             return "XYZ";
@@ -135,6 +145,8 @@ const char* channelSuffixes(AovKind kind) {
     fail("invalid AovKind value ", static_cast<int>(kind));
 }
 
+namespace {
+
 // EXR: the crop is the data window inside the full display window, so crops
 // of one image composite into the whole.
 OIIO::ImageSpec exrSpec(const Film& film, const OutputSettings& settings,
@@ -146,11 +158,16 @@ OIIO::ImageSpec exrSpec(const Film& film, const OutputSettings& settings,
     for (AovKind kind : film.aovs()) {
         // Ids are always float: half holds integers exactly only up to 2048.
         const OIIO::TypeDesc aovFormat = kind == AovKind::ObjectId ? OIIO::TypeDesc::FLOAT : format;
-        for (const char* suffix = channelSuffixes(kind); *suffix != '\0'; ++suffix) {
+        for (const char* suffix = exrChannelSuffixes(kind); *suffix != '\0'; ++suffix) {
             names.push_back(concat(aovName(kind), ".", *suffix));
             formats.push_back(aovFormat);
         }
         planes.push_back(film.resolveAov(kind));
+    }
+    // A part of a split render: the exact state, as float channels (exact_part.h).
+    if (metadata.part) {
+        appendExactChannels(film, names, planes);
+        formats.resize(names.size(), OIIO::TypeDesc::FLOAT);
     }
 
     const PixelRect& crop = film.crop();
@@ -203,17 +220,21 @@ std::vector<T> quantise(const std::vector<float>& values) {
 // them to spec.format.
 void writeFile(const fs::path& file, const Format& format, OIIO::ImageSpec& spec,
                OIIO::TypeDesc pixelType, const void* pixels) {
-    TemporaryFile temp(temporaryPath(file));
-    std::string error;
-    {
+    writeFileAtomically(file, [&](const fs::path& temp) {
         std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(format.oiioFormat);
-        if (!out) {
-            error = OIIO::geterror();
-        } else if (!out->open(temp.path().string(), spec) || !out->write_image(pixelType, pixels) ||
-                   !out->close()) {
-            error = out->geterror();
-        }
-    }  // the output is destroyed, and the file closed, before any rename or removal
+        if (!out) return OIIO::geterror();
+        if (!out->open(temp.string(), spec) || !out->write_image(pixelType, pixels) || !out->close())
+            return out->geterror();
+        return std::string();
+    });  // the output is destroyed, and the file closed, before any rename or removal
+}
+
+}  // namespace
+
+void writeFileAtomically(const fs::path& file,
+                         const std::function<std::string(const fs::path& temp)>& write) {
+    TemporaryFile temp(temporaryPath(file));
+    std::string error = write(temp.path());
     if (error.empty()) {
         std::error_code ec;
         fs::rename(temp.path(), file, ec);
@@ -224,8 +245,6 @@ void writeFile(const fs::path& file, const Format& format, OIIO::ImageSpec& spec
     }
     if (!error.empty()) fail(file.string(), ": cannot write: ", error);
 }
-
-}  // namespace
 
 std::span<const std::string_view> supportedImageExtensions() { return kExtensions; }
 

@@ -4,8 +4,10 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstdint>
 #include <vector>
 
 #include "strahl/camera/tile_rays.h"
@@ -111,7 +113,15 @@ RenderStats renderImage(const World& world, const Camera& camera, const Integrat
     if (!world.lightsPrepared()) fail("renderImage: World::prepareLights() has not been called");
     const auto start = std::chrono::steady_clock::now();
     const std::vector<PixelRect> tiles = cutTiles(film.crop(), options.tileSize);
-    const TileRayGenerator generator(camera, options.seed, options.spp, options.filter);
+    if (options.sampleOffset < 0 || options.sampleOffset > INT32_MAX - options.spp)
+        fail("sample offset ", options.sampleOffset, " with ", options.spp,
+             " samples per pixel is out of range");
+    // The generator only asks whether there is more than one sample per pixel
+    // (one alone goes through the pixel centre); a part of a split render is
+    // part of a render of many.
+    const TileRayGenerator generator(camera, options.seed,
+                                     options.samplePart ? std::max(options.spp, 2) : options.spp,
+                                     options.filter);
 
     RenderStats result;
     result.packetWidth = resolvePacketWidth(options.packets, *world.accel);
@@ -151,15 +161,16 @@ RenderStats renderImage(const World& world, const Camera& camera, const Integrat
                         // Tiles in flight finish; the rest of the pass is skipped.
                         if (tileStart[i] > pass || cancelled()) continue;
                         TileContext ctx{world, integrator, film, !film.aovs().empty(), {}, 0};
+                        const int sample = options.sampleOffset + pass;  // the sampler's index
                         switch (result.packetWidth) {
                             case 16:
-                                renderTilePackets<16>(ctx, generator, tiles[i], pass, pass + 1);
+                                renderTilePackets<16>(ctx, generator, tiles[i], sample, sample + 1);
                                 break;
                             case 8:
-                                renderTilePackets<8>(ctx, generator, tiles[i], pass, pass + 1);
+                                renderTilePackets<8>(ctx, generator, tiles[i], sample, sample + 1);
                                 break;
                             default:
-                                renderTileSingle(ctx, generator, tiles[i], pass, pass + 1);
+                                renderTileSingle(ctx, generator, tiles[i], sample, sample + 1);
                                 break;
                         }
                         cameraRays += ctx.cameraRays;

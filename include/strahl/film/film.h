@@ -1,10 +1,18 @@
 #pragma once
-// Film: float accumulation of radiance and AOVs over a pixel rectangle of the
-// full image (the crop window). A pixel's value is the plain mean of the samples
+// Film: accumulation of radiance and AOVs over a pixel rectangle of the full
+// image (the crop window). A pixel's value is the plain mean of the samples
 // credited to it: with filter importance sampling (core/filter.h) every sample
 // has weight 1, even one whose raster position lies outside its pixel. Each
 // pixel is written by exactly one tile, in sample order, so no locking is needed
 // and the summation order is fixed (deterministic).
+//
+// The beauty and the mean AOVs (normal, depth, albedo, position) are summed
+// exactly, in fixed point (film/exact_sum.h): sums over disjoint sample ranges
+// add up to the sum over their union bit for bit, so a render split by sample
+// ranges merges into exactly the single-machine image (merge()). The variance
+// AOV keeps Welford's float running mean and M2, which merge() combines by
+// Chan et al.'s parallel formula: exact in arithmetic, not in rounding. The
+// objectid AOV is the first sample's, which a merge takes from the earlier part.
 
 #include <cstddef>
 #include <cstdint>
@@ -18,6 +26,7 @@
 
 #include "strahl/core/math.h"
 #include "strahl/core/pixel_rect.h"
+#include "strahl/film/exact_sum.h"
 
 namespace strahl {
 
@@ -49,6 +58,22 @@ struct AovSample {
     Color albedo{0.0f};
     Vec3 position{0.0f};    // world space
     uint32_t objectId = 0;  // written as a float: exact below 2^24
+};
+
+// One pixel's whole accumulation state (Film::pixel, setPixel): what a part
+// of a split render hands to `strahl merge` (film/exact_part.h). Members of
+// AOVs the film does not store are left at their defaults and ignored.
+struct FilmPixel {
+    uint32_t samples = 0;
+    uint32_t hits = 0;  // samples that hit, for depth and position
+    ExactSum3 radiance{};
+    ExactSum3 normal{};
+    ExactSum depth{};
+    ExactSum3 albedo{};
+    ExactSum3 position{};
+    float objectId = -1.0f;  // the first sample's, -1 if it missed
+    Color mean{0.0f};        // Welford's running mean of the radiance (variance AOV)
+    Color m2{0.0f};          // and its sum of squared deviations
 };
 
 class Film {
@@ -87,6 +112,19 @@ public:
     void unpackPixels(const PixelRect& rect, std::span<const std::byte> bytes,
                       const std::string& source);
 
+    // One pixel's state (full-image coordinates, inside the crop), and its
+    // inverse. setPixel ignores the members of AOVs this film does not store.
+    FilmPixel pixel(int x, int y) const;
+    void setPixel(int x, int y, const FilmPixel& state);
+
+    // Adds the samples of `later`, a film of the same size, crop and AOVs whose
+    // samples come after this film's (the objectid AOV keeps the first
+    // sample's): the exact sums simply add, so the result is bit for bit the
+    // film of both sample sets, except the variance AOV (Chan's formula, see
+    // above). Throws strahl::Error naming `source` if the films do not match
+    // or a pixel would exceed ExactSum::kMaxSamples samples.
+    void merge(const Film& later, const std::string& source);
+
     // Resolved crop-sized images, row-major from the top row, interleaved channels.
     std::vector<float> resolveBeauty() const;  // RGB
     std::vector<float> resolveAov(AovKind kind) const;
@@ -106,13 +144,13 @@ private:
     int fullWidth_, fullHeight_;
     PixelRect crop_;
     std::vector<AovKind> aovs_;
-    std::vector<Color> radiance_;
+    std::vector<ExactSum3> radiance_;
     std::vector<uint32_t> samples_;
     std::vector<uint32_t> hits_;  // samples that hit: for depth and position
-    std::vector<Vec3> normal_;
-    std::vector<float> depth_;
-    std::vector<Color> albedo_;
-    std::vector<Vec3> position_;
+    std::vector<ExactSum3> normal_;
+    std::vector<ExactSum> depth_;
+    std::vector<ExactSum3> albedo_;
+    std::vector<ExactSum3> position_;
     std::vector<float> objectId_;
     std::vector<Color> mean_;  // Welford's running mean of the radiance
     std::vector<Color> m2_;    // Welford's sum of squared deviations from it

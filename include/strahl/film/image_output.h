@@ -12,12 +12,15 @@
 // so a failure never leaves a partial file behind.
 
 #include <filesystem>
+#include <functional>
 #include <map>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
 
 #include "strahl/film/display_transform.h"
+#include "strahl/film/exact_part.h"
 #include "strahl/film/film.h"
 
 namespace strahl {
@@ -36,7 +39,18 @@ struct ImageMetadata {
     std::string camera;  // human-readable camera description
     Mat4 worldToCamera{1.0f};
     std::map<std::string, std::string> extra;
+    // Set for a part of a render split by sample ranges (--sample-offset) and
+    // for merges of such parts: EXR outputs then also carry the film's exact
+    // state and strahl:samples_begin, strahl:samples_end (ints: the first and
+    // one past the last sample index), strahl:sample_ranges ("0-2,5-6") and
+    // strahl:split_fingerprint, for `strahl merge` (film/exact_part.h).
+    std::optional<SamplePart> part;
 };
+
+// The EXR channel suffixes of an AOV, one letter per channel: "XYZ" for
+// normal and position, "Z" for depth, "RGB" for albedo and variance, "X" for
+// objectid (channel "normal.X", ...).
+const char* exrChannelSuffixes(AovKind kind);
 
 // The extensions writeImage accepts, lower case with the dot (".exr", ...).
 std::span<const std::string_view> supportedImageExtensions();
@@ -48,5 +62,15 @@ void checkOutputPath(const std::filesystem::path& file);
 
 void writeImage(const Film& film, const std::filesystem::path& file, const OutputSettings& settings,
                 const ImageMetadata& metadata);
+
+// The temp-then-rename writer behind writeImage, for every other file strahl
+// writes whole (assembled images, statistics): `write` creates the file at the
+// temporary path it is given (in the destination folder, same extension) and
+// returns an error message, empty on success; then the file is renamed to
+// `file`. On any failure (an error message, an exception, a failed rename) the
+// temporary file is removed and strahl::Error "<file>: cannot write: ..." is
+// thrown, so no partial file is ever left under either name.
+void writeFileAtomically(const std::filesystem::path& file,
+                         const std::function<std::string(const std::filesystem::path& temp)>& write);
 
 }  // namespace strahl

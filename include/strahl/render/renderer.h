@@ -40,6 +40,17 @@ struct RenderOptions {
     // last, with the samples per pixel done; returning false stops the render
     // there (time limits). Checkpoints are written from here.
     std::function<bool(int samplesDone)> passDone;
+    // Sample splitting (docs/farm.md): pass s takes sample index
+    // sampleOffset + s of every pixel, so a render of spp samples from offset
+    // K uses exactly the samples K .. K+spp-1 of the render of K+spp samples.
+    // The film counts only its own samples (s), so a checkpoint resumes the
+    // part where it stopped.
+    int sampleOffset = 0;
+    // One part of such a split render: samples are placed as in a render of
+    // more than one sample per pixel even if this part has one (a render of
+    // one sample alone shoots it through the pixel centre), so that every
+    // part's samples are those of the whole.
+    bool samplePart = false;
 };
 
 struct RenderStats {
