@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages strahl builds with (only those missing), then
-# configures the CMake build in build/ (Release unless BUILD_TYPE says otherwise).
+# configures the CMake build in build/ (Release unless BUILD_TYPE says otherwise)
+# with MPI on (STRAHL_MPI: strahl render --distributed, docs/distributed.md).
 # Usage: scripts/setup.sh            (run from anywhere; uses sudo when not root)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -11,6 +12,7 @@ packages=(
   libglm-dev libtbb-dev libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev libtinygltf-dev
   clang-14 libclang-rt-14-dev
+  libopenmpi-dev openmpi-bin
 )
 missing=()
 for p in "${packages[@]}"; do
@@ -27,5 +29,9 @@ fi
 generator=()
 command -v ninja >/dev/null && generator=(-G Ninja)
 if [ ! -f "$root/build/CMakeCache.txt" ]; then
-  cmake -S "$root" -B "$root/build" "${generator[@]}" -DCMAKE_BUILD_TYPE="${BUILD_TYPE:-Release}"
+  cmake -S "$root" -B "$root/build" "${generator[@]}" -DCMAKE_BUILD_TYPE="${BUILD_TYPE:-Release}" \
+    -DSTRAHL_MPI=ON
+elif ! grep -q '^STRAHL_MPI:BOOL=ON$' "$root/build/CMakeCache.txt"; then
+  # A build/ configured before MPI was an option (or without it): turn it on.
+  cmake -S "$root" -B "$root/build" -DSTRAHL_MPI=ON
 fi

@@ -1,0 +1,201 @@
+// `strahl render --distributed` under mpirun on this machine (loopback /
+// shared memory): the gathered image equals a single-process render bit for
+// bit, and every failure — too few ranks, a worker's error, a worker started
+// with other settings, a rank killed mid-render — ends the job with a message
+// on rank 0, a non-zero status, no hang and no output file.
+//
+// Each job runs under `timeout` so that a hang fails the test (status 124)
+// instead of stalling ctest. mpirun needs --allow-run-as-root when CI runs as
+// root (set through its environment variables here, not globally) and
+// --oversubscribe for more ranks than cores.
+
+#include <OpenImageIO/imagebuf.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "test_support.h"
+
+namespace strahl {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kTimedOut = 124;  // timeout(1)'s status for a command it had to kill
+
+// A small path-traced scene with glass, metals, implicit and parametric shapes;
+// 50 x 37 is a multiple of no tile size used here, so edge tiles are partial.
+const std::string kScene = (test::sourceDir() / "scenes/statistical/glossy_room.json").string();
+const std::string kImage =
+    " --width 50 --height 37 --spp 4 --exr-float -q --aov normal --aov depth --aov albedo "
+    "--aov position --aov objectid --aov variance";
+
+struct JobResult {
+    int status = -1;
+    std::string err;
+};
+
+// Runs a shell command, keeping its exit status and stderr.
+JobResult runShell(const std::string& command) {
+    const fs::path err = fs::temp_directory_path() / ("strahl-mpi-stderr-" + std::to_string(getpid()));
+    const int raw = std::system((command + " >/dev/null 2>" + err.string()).c_str());
+    JobResult r;
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    r.err = test::readFile(err);
+    fs::remove(err);
+    return r;
+}
+
+// `launch` follows mpirun's own options: "-np 3 <strahl> render ..." or an
+// MPMD line with ':'; `env` (VAR=value ...) is set for mpirun and its ranks.
+JobResult mpirun(const std::string& launch, const std::string& env = "") {
+    return runShell("env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " + env +
+                    " timeout 90 " + STRAHL_MPIEXEC + " --oversubscribe --bind-to none " + launch);
+}
+
+// "<strahl> render SCENE <image flags> <flags> -o OUT --distributed"
+std::string strahlRender(const fs::path& out, const std::string& flags,
+                         const std::string& scene = kScene) {
+    return std::string(STRAHL_BINARY) + " render " + scene + kImage + flags + " -o " +
+           out.string() + " --distributed";
+}
+
+struct Exr {
+    std::vector<float> pixels;
+    int channels = 0;
+    std::vector<std::string> names;
+    std::string partial, samples;
+};
+
+Exr readExr(const fs::path& file) {
+    OIIO::ImageBuf image(file.string());
+    Exr e;
+    if (!image.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
+        ADD_FAILURE() << "cannot read " << file << ": " << image.geterror();
+        return e;
+    }
+    const OIIO::ImageSpec& spec = image.spec();
+    e.channels = spec.nchannels;
+    e.names = spec.channelnames;
+    e.pixels.resize(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
+    image.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, e.pixels.data());
+    e.partial = spec.get_string_attribute("strahl:partial");
+    e.samples = spec.get_string_attribute("strahl:samples");
+    return e;
+}
+
+// Every channel of every pixel, compared as bits (the depth AOV holds +inf
+// for misses; no NaNs).
+void expectIdentical(const Exr& a, const Exr& b, const std::string& what) {
+    ASSERT_EQ(a.names, b.names) << what;
+    ASSERT_EQ(a.pixels.size(), b.pixels.size()) << what;
+    size_t differing = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) differing += a.pixels[i] != b.pixels[i];
+    EXPECT_EQ(differing, 0u) << what << ": " << differing << " of " << a.pixels.size()
+                             << " values differ";
+}
+
+Exr renderLocally(const fs::path& dir) {
+    const fs::path out = dir / "local.exr";
+    const std::string command = std::string(STRAHL_BINARY) + " render " + kScene + kImage +
+                                " --threads 2 -o " + out.string();
+    const JobResult r = runShell(command);
+    EXPECT_EQ(r.status, 0) << r.err;
+    return readExr(out);
+}
+
+// Nothing at all in `dir`: no image, no temporary file.
+void expectEmpty(const fs::path& dir) {
+    for (const auto& entry : fs::directory_iterator(dir))
+        ADD_FAILURE() << "left behind: " << entry.path();
+}
+
+TEST(Distributed, ThreeRanksGiveTheSingleProcessImageBitForBit) {
+    const fs::path dir = test::scratchDir("distributed-identical");
+    const Exr local = renderLocally(dir);
+    ASSERT_EQ(local.channels, 3 + 3 + 1 + 3 + 3 + 1 + 3);  // beauty and the six AOVs
+
+    // 2 workers with 2 render threads each; 8-pixel tiles: 35 tiles, the last
+    // column 2 pixels wide and the last row 5 high.
+    const fs::path out = dir / "mpi3.exr";
+    JobResult r = mpirun("-np 3 " + strahlRender(out, " --threads 2 --tile 8"));
+    ASSERT_EQ(r.status, 0) << r.err;
+    const Exr three = readExr(out);
+    expectIdentical(local, three, "mpirun -np 3, 8-pixel tiles");
+    EXPECT_EQ(three.partial, "0");
+    EXPECT_EQ(three.samples, "4");
+
+    // One worker, one thread, 16-pixel tiles.
+    const fs::path out2 = dir / "mpi2.exr";
+    r = mpirun("-np 2 " + strahlRender(out2, " --threads 1 --tile 16"));
+    ASSERT_EQ(r.status, 0) << r.err;
+    expectIdentical(local, readExr(out2), "mpirun -np 2, 16-pixel tiles");
+}
+
+TEST(Distributed, OneRankIsAnError) {
+    const fs::path dir = test::scratchDir("distributed-one-rank");
+    const JobResult r = mpirun("-np 1 " + strahlRender(dir / "a.exr", ""));
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_TRUE(test::contains(r.err, "strahl: error: --distributed needs at least 2 MPI "
+                                      "processes (rank 0 schedules, the others render), got 1"))
+        << r.err;
+    expectEmpty(dir);
+}
+
+TEST(Distributed, AWorkersErrorIsReportedByRankZero) {
+    const fs::path dir = test::scratchDir("distributed-worker-error");
+    const fs::path missing = dir / "missing.json";
+    // MPMD: ranks 0 and 1 get the scene, rank 2 a file that does not exist.
+    const JobResult r = mpirun("-np 2 " + strahlRender(dir / "a.exr", "") + " : -np 1 " +
+                         strahlRender(dir / "a.exr", "", missing.string()));
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_TRUE(test::contains(r.err, "strahl: rank 2: " + missing.string() + ": cannot open"))
+        << r.err;
+    expectEmpty(dir);
+}
+
+TEST(Distributed, AWorkerWithOtherSettingsIsAnError) {
+    const fs::path dir = test::scratchDir("distributed-other-settings");
+    const JobResult r = mpirun("-np 2 " + strahlRender(dir / "a.exr", "") + " : -np 1 " +
+                         strahlRender(dir / "a.exr", " --seed 99"));
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_TRUE(test::contains(r.err, "strahl: error: rank 2 was started with other settings "
+                                      "than rank 0"))
+        << r.err;
+    expectEmpty(dir);
+}
+
+TEST(Distributed, ARankKilledMidRenderEndsTheJobWithoutOutput) {
+    for (const char* fault : {"1:3", "2:0", "0:5"}) {  // a worker, another, the scheduler
+        const fs::path dir = test::scratchDir("distributed-killed");
+        const JobResult r = mpirun("-x STRAHL_DISTRIBUTED_FAULT -np 3 " +
+                                 strahlRender(dir / "a.exr", " --threads 1 --tile 8"),
+                             std::string("STRAHL_DISTRIBUTED_FAULT=") + fault);
+        EXPECT_NE(r.status, 0) << fault << ": " << r.err;
+        EXPECT_NE(r.status, kTimedOut) << fault << ": the job hung";
+        EXPECT_TRUE(test::contains(r.err, "STRAHL_DISTRIBUTED_FAULT: killing this rank"))
+            << fault << ": " << r.err;
+        expectEmpty(dir);
+    }
+}
+
+TEST(Distributed, UnsupportedCombinationsAreErrors) {
+    const fs::path dir = test::scratchDir("distributed-unsupported");
+    for (const std::string& flags : {" --checkpoint " + (dir / "c.ckpt").string(),
+                                    std::string(" --time-limit 5")}) {
+        const JobResult r = mpirun("-np 2 " + strahlRender(dir / "a.exr", flags));
+        EXPECT_EQ(r.status, 1) << flags << ": " << r.err;
+        EXPECT_TRUE(test::contains(r.err, "strahl: error: --distributed renders every tile "
+                                          "whole, in one go, with the ray tracer"))
+            << flags << ": " << r.err;
+        expectEmpty(dir);
+    }
+}
+
+}  // namespace
+}  // namespace strahl
