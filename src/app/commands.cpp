@@ -6,8 +6,17 @@
 #include <cstdio>
 #include <filesystem>
 
+#include <tbb/task_arena.h>
+
+#include <nlohmann/json.hpp>
+
+#include "existing_outputs.h"
+#include "frame_pattern.h"
 #include "render_control.h"
+#include "stats_file.h"
 #include "strahl/core/error.h"
+#include "strahl/distributed/distributed.h"
+#include "strahl/core/process_memory.h"
 #include "strahl/film/checkpoint.h"
 #include "strahl/film/image_output.h"
 #include "strahl/meshio/mesh_file.h"
@@ -49,9 +58,90 @@ PixelRect cropWindow(const Options& o, const SceneDesc& desc) {
     if (!o.crop) return full;
     const PixelRect& c = *o.crop;
     if (c.x1 > full.x1 || c.y1 > full.y1)
-        fail("--crop ", c.x0, ",", c.y0, ",", c.x1, ",", c.y1, " exceeds the ", full.x1, "x",
-             full.y1, " image");
+        fail(o.cropArgument, " exceeds the ", full.x1, "x", full.y1,
+             " image (need X1 <= ", full.x1, " and Y1 <= ", full.y1, ")");
     return c;
+}
+
+// The file options with their '#' frame patterns filled (frame_pattern.h);
+// parseOptions has made sure there is a --frame if any has one.
+Options withFrameNames(Options o) {
+    const int frame = o.frame.value_or(-1);
+    for (std::string& out : o.outputs) out = expandFramePattern(out, frame, "-o").string();
+    for (std::optional<std::string>* file : {&o.stats, &o.checkpoint, &o.resume})
+        if (*file) **file = expandFramePattern(**file, frame, "file").string();
+    return o;
+}
+
+// --skip-existing: whether every output is already complete (existing_outputs.h);
+// if so, says so in one line (and a "skipped" JSON event).
+bool outputsComplete(const Options& o, const SceneDesc& desc, const PixelRect& crop,
+                     const std::string& fingerprint, ProgressReporter& progress) {
+    const ExpectedImage expected{desc.film.width, desc.film.height, crop, fingerprint};
+    std::vector<std::string> names;
+    for (const auto& out : desc.film.outputs) {
+        const std::string why = incompleteReason(out, expected);
+        if (!why.empty()) {
+            // A missing output is the normal case; anything else is worth a line in the log.
+            if (!o.quiet && why != "does not exist")
+                std::fprintf(stderr, "--skip-existing: %s %s: rendering it again\n",
+                             out.string().c_str(), why.c_str());
+            return false;
+        }
+        names.push_back(out.string());
+    }
+    // The outputs of one command are written together, by one run: one that
+    // records strahl:partial vouches for the others.
+    if (std::none_of(desc.film.outputs.begin(), desc.film.outputs.end(),
+                     [](const std::filesystem::path& p) { return recordsPartial(p); })) {
+        if (!o.quiet)
+            std::fprintf(stderr, "--skip-existing: JPEG and TIFF images do not record whether "
+                                 "they are partial; add an .exr or .png output to make them "
+                                 "skippable: rendering again\n");
+        return false;
+    }
+    std::string list;
+    for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+    if (!o.quiet)
+        std::fprintf(stderr, "skipped: every output exists and is complete: %s\n", list.c_str());
+    progress.event("skipped", {{"outputs", names}, {"exit_status", 0}});
+    return true;
+}
+
+// What the stats file and the last JSON event say about a finished run.
+RunReport makeReport(const Options& o, const SceneDesc& desc, const PixelRect& crop,
+                     const BuildTimings& timings, const RenderStats& stats, bool raster,
+                     double totalSeconds) {
+    RunReport r;
+    r.scene = o.scene;
+    r.frame = o.frame;
+    r.width = desc.film.width;
+    r.height = desc.film.height;
+    r.region = crop;
+    r.spp = desc.render.spp;
+    r.seed = desc.render.seed;
+    r.integrator = desc.render.integrator;
+    r.algorithm = o.algorithm;
+    r.accel = raster ? "none" : o.accel;
+    r.sampleBegin = o.sampleOffset.value_or(0);  // --sample-offset: a part of a split render
+    r.sampleEnd = r.sampleBegin + desc.render.spp;
+    r.samplesDone = raster ? desc.render.spp : stats.completedPasses;
+    // tbb's default arena: the cores this process may use (its affinity mask).
+    r.threads = o.threads.value_or(0) > 0 ? *o.threads : tbb::this_task_arena::max_concurrency();
+    r.loadSeconds = timings.loadSeconds;
+    r.bvhSeconds = timings.bvhSeconds;
+    r.renderSeconds = stats.seconds;
+    r.firstPixelSeconds = timings.loadSeconds + timings.bvhSeconds + stats.firstTileSeconds;
+    r.totalSeconds = totalSeconds;
+    r.cameraRays = stats.cameraRays;
+    r.shadowRays = stats.shadowRays;
+    r.bounceRays = stats.bounceRays;
+    r.peakResidentBytes = peakResidentBytes();
+    for (const auto& out : desc.film.outputs) r.outputs.push_back(out.string());
+    if (stats.cancelled) r.stopped = signalName(InterruptGuard::signalNumber());
+    if (stats.stoppedEarly) r.stopped = "time limit";
+    r.exitStatus = stats.cancelled ? 128 + InterruptGuard::signalNumber() : 0;
+    return r;
 }
 
 std::string humanCount(double n) {
@@ -63,18 +153,33 @@ std::string humanCount(double n) {
     return buf;
 }
 
-}  // namespace
+// The scene build settings of the command line (render and info).
+BuildOptions buildOptions(const Options& o) {
+    BuildOptions build;
+    build.threads = o.threads.value_or(0);
+    build.bvhQuality = bvhQualityFromName(o.bvhQuality);
+    build.compact = o.compact;
+    if (o.memoryLimit) build.memoryLimitBytes = parseByteSize(*o.memoryLimit, "--memory-limit");
+    return build;
+}
 
-int runRender(const Options& o) {
+int renderScene(const Options& given, ProgressReporter& progress) {
+    const auto started = std::chrono::steady_clock::now();
+    const Options o = withFrameNames(given);
     SceneDesc desc = parseSceneFile(o.scene);
     applyOverrides(o, desc);
+    for (auto& out : desc.film.outputs)
+        out = expandFramePattern(out, o.frame.value_or(-1), o.scene + ": film.outputs:");
     if (static_cast<long long>(desc.film.width) * desc.film.height > kMaxFilmPixels)
         fail("image of ", desc.film.width, "x", desc.film.height, " pixels is larger than the limit of ",
              kMaxFilmPixels, " pixels");
     if (desc.film.outputs.empty())
         fail(o.scene, ": no output image: give -o FILE or film.outputs in the scene");
     // Fail on a bad output path or integrator name now, not after a long render.
-    for (const auto& out : desc.film.outputs) checkOutputPath(out);
+    // Distributed workers write nothing: only rank 0 checks the outputs.
+    const bool worker = distributed::role() == distributed::Role::Worker;
+    if (!worker)
+        for (const auto& out : desc.film.outputs) checkOutputPath(out);
     // A bad OCIO config must fail now, not after the render: load it if any
     // output goes through the display transform or a config was named.
     const bool displayOutput = std::any_of(
@@ -83,18 +188,47 @@ int runRender(const Options& o) {
             for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
             return ext != ".exr";
         });
-    if (displayOutput || !o.color.configFile.empty()) DisplayTransform::get(o.color);
+    if (!worker && (displayOutput || !o.color.configFile.empty())) DisplayTransform::get(o.color);
     requireIntegratorName(desc.render.integrator);
     const bool raster = o.algorithm == "raster";
     if (raster) requireRasterSettings(desc.render.integrator, desc.render.spp);
     if (raster && (o.checkpoint || o.resume || o.timeLimit))
         fail("--checkpoint, --resume and --time-limit apply to ray tracing, not --algorithm raster");
+    if (o.distributed && (raster || o.checkpoint || o.resume || o.timeLimit))
+        fail("--distributed renders every tile whole, in one go, with the ray tracer: "
+             "--algorithm raster, --checkpoint, --resume and --time-limit do not apply to it");
+    if (o.sampleOffset && (raster || o.distributed))
+        fail("--sample-offset splits the samples of a local ray-traced render: --algorithm raster "
+             "and --distributed do not apply to it");
+    // Rank 0 alone cannot decide to skip: the workers would wait for it forever.
+    if (o.distributed && o.skipExisting)
+        fail("--skip-existing does not apply to --distributed: run it without, or check the "
+             "outputs before starting the job");
     const PixelRect crop = cropWindow(o, desc);
+    if (o.stats && !worker) checkStatsPath(*o.stats);
+    // The sample offset decides the pixels too: regions of different sample
+    // ranges must not be assembled, nor one skipped for the other.
+    const std::string sceneFingerprint =
+        imageFingerprint(desc) +
+        (o.sampleOffset ? ", samples from " + std::to_string(*o.sampleOffset) : std::string());
+    // Before anything heavy is loaded: only the scene file has been read.
+    if (o.skipExisting && !worker && outputsComplete(o, desc, crop, sceneFingerprint, progress))
+        return 0;
+    {
+        std::vector<std::string> outputs;
+        for (const auto& out : desc.film.outputs) outputs.push_back(out.string());
+        progress.event("start", {{"scene", o.scene},
+                                 {"frame", o.frame ? nlohmann::ordered_json(*o.frame)
+                                                   : nlohmann::ordered_json(nullptr)},
+                                 {"resolution", {desc.film.width, desc.film.height}},
+                                 {"region", {crop.x0, crop.y0, crop.x1, crop.y1}},
+                                 {"spp", desc.render.spp},
+                                 {"outputs", outputs}});
+        progress.setPasses(0, desc.render.spp);
+    }
 
     if (o.quiet) setMeshWarningHandler([](const std::string&) {});
-    ProgressReporter progress(ProgressReporter::defaultStyle(o.quiet));
-    BuildOptions build;
-    build.threads = o.threads.value_or(0);
+    BuildOptions build = buildOptions(o);
     if (raster) {
         build.accel = AccelKind::Naive;  // the rasterizer traces no rays: no BVH to build
     } else {
@@ -121,8 +255,10 @@ int runRender(const Options& o) {
         options.seed = desc.render.seed;
         options.started = [&](size_t tiles) { progress.begin("raster", tiles); };
         options.tileDone = [&] { progress.advance(1); };
+        progress.setPasses(0, 1);
         rasterStats = rasterizeImage(world, camera, *integrator, film, options);
         progress.end();
+        progress.passDone(1);
         stats.seconds = rasterStats.seconds;
     } else {
         const std::string fingerprint = renderFingerprint(o, desc, crop);
@@ -142,20 +278,39 @@ int runRender(const Options& o) {
         options.packets = o.packets;
         options.progress = &progress;
         options.cancel = &InterruptGuard::cancelFlag();
+        options.sampleOffset = o.sampleOffset.value_or(0);
+        options.samplePart = o.sampleOffset.has_value();
         const auto renderStart = std::chrono::steady_clock::now();
         auto lastCheckpoint = renderStart;
         const auto secondsSince = [](std::chrono::steady_clock::time_point t) {
             return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
         };
-        options.passDone = [&](int) {
+        const int samplesBefore = static_cast<int>(film.sampleCount(crop.x0, crop.y0));
+        progress.setPasses(samplesBefore, desc.render.spp);
+        options.passDone = [&](int samplesDone) {
+            progress.passDone(samplesDone);
             if (o.checkpoint && secondsSince(lastCheckpoint) >= o.checkpointInterval) {
                 writeCheckpoint(film, *o.checkpoint, fingerprint);
                 lastCheckpoint = std::chrono::steady_clock::now();
             }
             return !(o.timeLimit && secondsSince(renderStart) >= *o.timeLimit);
         };
-        const InterruptGuard interrupts;
-        stats = renderImage(world, camera, *integrator, film, options);
+        if (o.distributed) {
+            // Rank 0 gathers the image and goes on to write it like a local
+            // render; a worker has nothing to write. SIGINT/SIGTERM keep their
+            // default action: the job ends and no image is written.
+            distributed::Settings settings;
+            settings.fingerprint = fingerprint;
+            settings.report = !o.quiet;
+            stats = distributed::renderImage(world, camera, *integrator, film, options, settings);
+            if (worker) return 0;
+        } else {
+            const InterruptGuard interrupts;
+            stats = renderImage(world, camera, *integrator, film, options);
+        }
+        // renderImage reports every pass but the last through passDone.
+        if (stats.completedPasses == desc.render.spp && samplesBefore < desc.render.spp)
+            progress.passDone(desc.render.spp);
         // The state at the end, complete or not, so nothing rendered is lost:
         // an interrupted render resumes from exactly where it stopped.
         if (o.checkpoint) writeCheckpoint(film, *o.checkpoint, fingerprint);
@@ -173,6 +328,8 @@ int runRender(const Options& o) {
     metadata.extra["seed"] = std::to_string(desc.render.seed);
     metadata.extra["scene"] = desc.file.filename().string();
     metadata.extra["algorithm"] = o.algorithm;
+    metadata.extra["fingerprint"] = sceneFingerprint;
+    if (o.frame) metadata.extra["frame"] = std::to_string(*o.frame);
     const bool partial = stats.cancelled || stats.stoppedEarly;
     if (!raster) {
         // Every pixel has at least completedPasses samples; after an interrupt
@@ -183,9 +340,33 @@ int runRender(const Options& o) {
         if (stats.stoppedEarly) metadata.extra["stopped"] = "time limit";
     }
     if (!raster) metadata.extra["accel"] = o.accel;
+    // A part of a split render: the samples it was asked for (a partial part
+    // has fewer in some pixels, which strahl merge detects and refuses).
+    if (o.sampleOffset) {
+        const auto begin = static_cast<uint32_t>(*o.sampleOffset);
+        metadata.part = SamplePart{{{begin, begin + static_cast<uint32_t>(desc.render.spp)}},
+                                   splitFingerprint(o, desc)};
+    }
     for (const auto& out : desc.film.outputs) {
         writeImage(film, out, output, metadata);
         if (!o.quiet) std::fprintf(stderr, "wrote %s\n", out.string().c_str());
+    }
+    {
+        const RunReport report = makeReport(
+            o, desc, crop, timings, stats, raster,
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
+        if (o.stats) writeStatsFile(*o.stats, report);
+        progress.event(report.stopped.empty() ? "done" : "interrupted",
+                       {{"status", runStatus(report)},
+                        {"stopped", report.stopped.empty() ? nlohmann::ordered_json(nullptr)
+                                                           : nlohmann::ordered_json(report.stopped)},
+                        {"partial", !report.stopped.empty()},
+                        {"passes_done", report.samplesDone},
+                        {"passes_total", report.spp},
+                        {"outputs", report.outputs},
+                        {"stats", o.stats ? nlohmann::ordered_json(*o.stats)
+                                          : nlohmann::ordered_json(nullptr)},
+                        {"exit_status", report.exitStatus}});
     }
 
     if (stats.cancelled) {
@@ -227,7 +408,28 @@ int runRender(const Options& o) {
                      stats.packetWidth > 1 ? ("packets of " + std::to_string(stats.packetWidth)).c_str()
                                            : "single rays");
     }
+    if (!o.quiet)
+        std::fprintf(stderr, "memory: shapes %s, bvh %s, peak resident %s\n",
+                     formatBytes(world.shapeMemoryBytes()).c_str(),
+                     formatBytes(world.accel->memoryBytes()).c_str(),
+                     formatBytes(peakResidentBytes()).c_str());
     return 0;
+}
+
+}  // namespace
+
+int runRender(const Options& o) {
+    // Distributed workers print nothing (rank 0 reports for the job).
+    const bool json = o.jsonProgress && distributed::role() != distributed::Role::Worker;
+    ProgressReporter progress(json ? ProgressReporter::Style::Json
+                                   : ProgressReporter::defaultStyle(o.quiet));
+    try {
+        return renderScene(o, progress);
+    } catch (const std::exception& e) {
+        // The JSON stream ends with an event whatever happens; main prints the message.
+        progress.event("error", {{"message", e.what()}, {"exit_status", 1}});
+        throw;
+    }
 }
 
 namespace {
@@ -260,7 +462,7 @@ void printShapes(const std::vector<SceneShape>& shapes, const char* indent) {
 int runInfo(const Options& o) {
     const SceneDesc desc = parseSceneFile(o.scene);
     BuildTimings timings;
-    const World world = buildWorld(desc, BuildOptions{}, &timings);
+    const World world = buildWorld(desc, buildOptions(o), &timings);
     const Bounds3 b = world.bounds();
     std::printf("scene      %s\n", desc.file.string().c_str());
     std::printf("shapes     %zu\n", world.shapes.size());
@@ -292,8 +494,18 @@ int runInfo(const Options& o) {
                 world.lightSet.lights().size(), world.lights.size(), areaLights, sky);
     std::printf("bounds     (%g, %g, %g) - (%g, %g, %g)\n", b.min.x, b.min.y, b.min.z, b.max.x,
                 b.max.y, b.max.z);
-    std::printf("memory     shapes %.1f MiB, bvh %.1f MiB\n",
-                double(world.shapeMemoryBytes()) / (1 << 20), double(world.accel->memoryBytes()) / (1 << 20));
+    std::printf("memory     shapes %s, bvh %s (%s, %s%s), peak resident %s\n",
+                formatBytes(world.shapeMemoryBytes()).c_str(),
+                formatBytes(world.accel->memoryBytes()).c_str(), o.bvhQuality.c_str(),
+                o.compact ? "compact" : "not compact",
+                world.triangleCount()
+                    ? (", " +
+                       formatBytes((world.shapeMemoryBytes() + world.accel->memoryBytes()) /
+                                   world.triangleCount()) +
+                       " per stored triangle with its mesh data")
+                          .c_str()
+                    : "",
+                formatBytes(peakResidentBytes()).c_str());
     std::printf("camera     %s\n", describeCamera(desc.camera).c_str());
     std::printf("film       %dx%d, %d spp, integrator %s\n", desc.film.width, desc.film.height,
                 desc.render.spp, desc.render.integrator.c_str());

@@ -8,6 +8,7 @@
 #include "commands.h"
 #include "options.h"
 #include "strahl/core/error.h"
+#include "strahl/distributed/distributed.h"
 
 int main(int argc, char** argv) {
     using namespace strahl::app;
@@ -15,8 +16,18 @@ int main(int argc, char** argv) {
     if (const auto code = parseOptions(argc, argv, options)) return *code;
     try {
         switch (options.command) {
-            case Command::Render: return runRender(options);
+            case Command::Render:
+                // Every rank runs the same render; the workers print nothing.
+                if (options.distributed)
+                    return strahl::distributed::run([&] {
+                        if (strahl::distributed::role() == strahl::distributed::Role::Worker)
+                            options.quiet = true;
+                        return runRender(options);
+                    });
+                return runRender(options);
             case Command::Bench: return runBench(options.bench);
+            case Command::Assemble: return runAssemble(options.assemble);
+            case Command::Merge: return runMerge(options.merge);
             default: return runInfo(options);
         }
     } catch (const strahl::Error& e) {

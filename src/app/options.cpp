@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <iostream>
 
+#include "frame_pattern.h"
 #include "strahl/core/error.h"
+#include "strahl/core/process_memory.h"
 #include "strahl/film/film.h"
 #include "strahl/integrator/integrator.h"
 #include "strahl/raster/rasterizer.h"
@@ -19,7 +21,9 @@ constexpr const char* kDescription =
     "strahl " STRAHL_VERSION " - an Embree-accelerated ray tracer.\n\n"
     "  strahl render SCENE.json -o image.exr -o image.png   render a scene\n"
     "  strahl info SCENE.json                                primitive counts, bounds, memory\n"
-    "  strahl bench --out results.csv --plot cost.svg        Embree vs naive vs raster\n\n"
+    "  strahl bench --out results.csv --plot cost.svg        Embree vs naive vs raster\n"
+    "  strahl assemble r*.exr -o image.exr                   stitch --region renders\n"
+    "  strahl merge part*.exr -o image.exr                   add up --sample-offset renders\n\n"
     "The scene format is documented in docs/scene-format.md, the options in docs/cli.md.\n"
     "Exit status: 0 success, 1 error (bad scene, mesh or output), 2 bad command line.";
 
@@ -33,6 +37,64 @@ std::string parseCrop(const std::string& text, std::optional<PixelRect>& crop) {
         return "--crop " + text + " is empty or negative (need 0 <= X0 < X1 and 0 <= Y0 < Y1)";
     crop = r;
     return {};
+}
+
+// "--region X0 Y0 X1 Y1": the same rectangle as --crop, as four arguments
+// (the spelling farm managers' templates generate).
+std::string parseRegion(const std::vector<std::string>& values, std::optional<PixelRect>& crop) {
+    std::string text;
+    for (const std::string& v : values) text += (text.empty() ? "" : " ") + v;
+    int numbers[4] = {};
+    for (size_t i = 0; i < 4; ++i) {
+        char tail = 0;
+        if (values.size() != 4 ||
+            std::sscanf(values[i].c_str(), "%d%c", &numbers[i], &tail) != 1)
+            return "--region expects X0 Y0 X1 Y1 (four integers), got '" + text + "'";
+    }
+    const PixelRect r{numbers[0], numbers[1], numbers[2], numbers[3]};
+    if (r.empty() || r.x0 < 0 || r.y0 < 0)
+        return "--region " + text + " is empty or negative (need 0 <= X0 < X1 and 0 <= Y0 < Y1)";
+    crop = r;
+    return {};
+}
+
+// Output names with '#' runs need --frame (docs/farm.md): an error on the
+// command line itself, before anything is read.
+std::string checkFramePatterns(const Options& o) {
+    if (o.frame) return {};
+    std::vector<std::pair<std::string, std::string>> files;
+    for (const std::string& out : o.outputs) files.emplace_back("-o", out);
+    if (o.stats) files.emplace_back("--stats", *o.stats);
+    if (o.checkpoint) files.emplace_back("--checkpoint", *o.checkpoint);
+    if (o.resume) files.emplace_back("--resume", *o.resume);
+    for (const auto& [option, file] : files)
+        if (hasFramePattern(file))
+            return option + " " + file + ": the name has a '#' frame pattern but no --frame N "
+                   "was given";
+    return {};
+}
+
+// The BVH build and memory options that `render` and `info` share.
+void addMemoryOptions(CLI::App& command, Options& o) {
+    command
+        .add_option("--bvh-quality", o.bvhQuality,
+                    "Embree BVH build: low (Morton: fastest build), medium (binned SAH, "
+                    "default) or high (spatial splits: fastest rays, slowest build)")
+        ->check(CLI::IsMember({"low", "medium", "high"}));
+    command.add_flag("--compact", o.compact,
+                     "Embree's compact BVH: about half the BVH memory, somewhat slower rays");
+    command.add_option("--memory-limit", o.memoryLimit,
+                       "Stop with a clear error (exit 1) instead of being killed when loading "
+                       "the scene or building the BVH would take the process past SIZE of "
+                       "resident memory: 8G, 512M, 1.5G (binary units) or bytes")
+        ->check([](const std::string& text) {
+            try {
+                parseByteSize(text, "--memory-limit");
+                return std::string();
+            } catch (const Error& e) {
+                return std::string(e.what());
+            }
+        });
 }
 
 }  // namespace
@@ -71,6 +133,13 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
     std::string cropText;
     render->add_option("--crop", cropText,
                        "Render only pixels X0<=x<X1, Y0<=y<Y1 (y=0 at the top): X0,Y0,X1,Y1");
+    std::vector<std::string> regionValues;
+    render->add_option("--region", regionValues,
+                       "Render only this pixel rectangle, X0<=x<X1, Y0<=y<Y1 (y=0 at the top): "
+                       "the four integers X0 Y0 X1 Y1; same as --crop. Stitch the regions' EXRs "
+                       "with strahl assemble")
+        ->expected(4)
+        ->type_name("INT");
     render->add_option("--aov", o.aovs, "AOV written to EXR outputs: normal, depth, albedo "
                                         "(repeat; overrides film.aovs)")
         ->check(CLI::IsMember(std::vector<std::string>(aovNames().begin(), aovNames().end())));
@@ -91,6 +160,7 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
     for (std::string_view n : rasterIntegratorNames()) algorithmHelp += " " + std::string(n);
     render->add_option("--algorithm", o.algorithm, algorithmHelp + "; see docs/rasterizer.md)")
         ->check(CLI::IsMember({"raytrace", "raster"}));
+    addMemoryOptions(*render, o);
     render->add_option("--tile", o.tileSize, "Tile size in pixels (default 32)")
         ->check(CLI::Range(4, 4096));
     render->add_option("--checkpoint", o.checkpoint,
@@ -107,6 +177,35 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
                        "Stop after the first whole sample pass that ends past this many seconds "
                        "of rendering, and write the image (exit 0; metadata says how many samples)")
         ->check(CLI::Range(0.0, 1e9));
+    // Sample indices are 31-bit: the offset leaves room for the largest --spp (65536).
+    render->add_option("--sample-offset", o.sampleOffset,
+                       "Render sample indices K .. K+spp-1 of every pixel: one part of a render "
+                       "split across machines; the EXR carries exact sums, and strahl merge adds "
+                       "the parts into exactly the image of one render (docs/farm.md)")
+        ->check(CLI::Range(0, 2147483647 - 65536))
+        ->type_name("K");
+    render->add_flag("--distributed", o.distributed,
+                     "Render over MPI: mpirun -np N strahl render ... --distributed; rank 0 "
+                     "schedules tiles and writes the outputs, the other N-1 ranks render; the "
+                     "image is bit-identical to a local render (docs/distributed.md)");
+    render->add_option("--frame", o.frame,
+                       "Frame number: fills every run of '#' in output, --stats and checkpoint "
+                       "names, zero-padded to the run's length (beauty.####.exr -> "
+                       "beauty.0042.exr), and is stored in the EXR metadata; the scene itself "
+                       "does not change (docs/farm.md)")
+        ->check(CLI::Range(0, 999999999));
+    render->add_flag("--skip-existing", o.skipExisting,
+                     "If every output already exists and is complete (not marked partial), "
+                     "print one line and exit 0 without rendering");
+    std::string progressFormat = "text";
+    render->add_option("--progress-format", progressFormat,
+                       "text (progress bar or lines on stderr, default) or json (one JSON object "
+                       "per line on stdout: start, progress, pass, done, ... see docs/cli.md)")
+        ->check(CLI::IsMember({"text", "json"}));
+    render->add_option("--stats", o.stats,
+                       "Write the run's statistics (settings, timings, rays, peak memory, "
+                       "outputs, exit status) to this JSON file at the end, also after an "
+                       "interrupt or a time limit");
     render->add_option("--ocio-config", o.color.configFile,
                        "OpenColorIO config for display outputs (default: $OCIO, else built-in)");
     render->add_option("--display", o.color.display, "OCIO display (built-in: sRGB)");
@@ -114,22 +213,42 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
 
     CLI::App* info = app.add_subcommand("info", "Print primitive counts, bounds and memory");
     info->add_option("scene", o.scene, "Scene file")->required();
+    addMemoryOptions(*info, o);
 
     CLI::App* bench = addBenchCommand(app, o.bench);
+    CLI::App* assemble = addAssembleCommand(app, o.assemble);
+    CLI::App* merge = addMergeCommand(app, o.merge);
 
     try {
         app.parse(argc, argv);
+        if (!cropText.empty() && !regionValues.empty())
+            throw CLI::ValidationError("--region",
+                                       "--region and --crop name the same rectangle: give one");
         if (!cropText.empty()) {
             const std::string problem = parseCrop(cropText, o.crop);
             if (!problem.empty()) throw CLI::ValidationError("--crop", problem);
+            o.cropArgument = "--crop " + cropText;
+        }
+        if (!regionValues.empty()) {
+            const std::string problem = parseRegion(regionValues, o.crop);
+            if (!problem.empty()) throw CLI::ValidationError("--region", problem);
+            o.cropArgument = "--region " + regionValues[0] + " " + regionValues[1] + " " +
+                             regionValues[2] + " " + regionValues[3];
+        }
+        if (render->parsed()) {
+            const std::string problem = checkFramePatterns(o);
+            if (!problem.empty()) throw CLI::ValidationError("--frame", problem);
         }
     } catch (const CLI::ParseError& e) {
         const int code = app.exit(e);  // prints help, version or the error
         return code == 0 ? 0 : 2;
     }
-    o.command = render->parsed() ? Command::Render
-                : bench->parsed()  ? Command::Bench
-                                   : Command::Info;
+    o.command = render->parsed()     ? Command::Render
+                : bench->parsed()    ? Command::Bench
+                : assemble->parsed() ? Command::Assemble
+                : merge->parsed()    ? Command::Merge
+                                     : Command::Info;
+    o.jsonProgress = progressFormat == "json";
     if (packets == "16") o.packets = PacketMode::Packet16;
     else if (packets == "8") o.packets = PacketMode::Packet8;
     else if (packets == "single") o.packets = PacketMode::Single;

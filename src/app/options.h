@@ -7,14 +7,16 @@
 #include <string>
 #include <vector>
 
+#include "assemble_command.h"
 #include "bench_command.h"
+#include "merge_command.h"
 #include "strahl/core/pixel_rect.h"
 #include "strahl/film/display_transform.h"
 #include "strahl/render/renderer.h"
 
 namespace strahl::app {
 
-enum class Command { None, Render, Info, Bench };
+enum class Command { None, Render, Info, Bench, Assemble, Merge };
 
 struct Options {
     Command command = Command::None;
@@ -24,21 +26,38 @@ struct Options {
     std::optional<int> width, height, spp, threads, maxDepth;
     std::optional<std::string> integrator;
     std::optional<uint64_t> seed;
-    std::optional<PixelRect> crop;
+    std::optional<PixelRect> crop;  // from --crop or --region (the farm's spelling)
+    std::string cropArgument;        // the option as given ("--region 0 0 8 8"), for messages
     std::vector<std::string> aovs;  // overrides film.aovs when given
     bool exrFloat = false;
     bool quiet = false;
     PacketMode packets = PacketMode::Auto;
     int tileSize = 32;
     std::string accel = "embree";  // embree | naive
+    // render and info: Embree's BVH build (docs/memory.md)
+    std::string bvhQuality = "medium";       // low | medium | high
+    bool compact = false;                    // Embree's compact BVH
+    std::optional<std::string> memoryLimit;  // e.g. "8G": a clean stop instead of a kill
     std::string algorithm = "raytrace";  // raytrace | raster
     ColorSettings color;
     std::optional<std::string> checkpoint;  // file written every checkpointInterval s and at the end
     double checkpointInterval = 60.0;
     std::optional<std::string> resume;      // checkpoint to continue from
     std::optional<double> timeLimit;        // seconds of rendering; stops at a whole sample pass
+    // sample splitting (docs/farm.md): render sample indices K .. K+spp-1
+    std::optional<int> sampleOffset;
+    bool distributed = false;               // render over MPI ranks (docs/distributed.md)
+    // farm (docs/farm.md)
+    std::optional<int> frame;               // fills the '#' runs of output names; metadata only
+    bool skipExisting = false;              // exit 0 at once if every output is complete
+    bool jsonProgress = false;              // --progress-format json: JSON lines on stdout
+    std::optional<std::string> stats;       // statistics JSON written at the end
     // bench
     BenchCommandOptions bench;
+    // assemble
+    AssembleOptions assemble;
+    // merge
+    MergeOptions merge;
 };
 
 // Parses argv. Returns an exit code to stop with (0 after --help/--version,

@@ -39,4 +39,20 @@ std::string signalName(int signal);
 std::string renderFingerprint(const Options& options, const SceneDesc& desc,
                               const PixelRect& crop);
 
+// What decides the pixel values of the image, whatever part of it is
+// rendered: the scene (hashed as above), resolution, samples, seed,
+// integrator, filter and AOVs, but not the region, tiles or threads. Stored
+// in EXR outputs as strahl:fingerprint; `strahl assemble` stitches only
+// regions that agree on it, and --skip-existing re-renders an output made
+// with another one.
+std::string imageFingerprint(const SceneDesc& desc);
+
+// What the parts of a render split by sample ranges (--sample-offset,
+// `strahl merge`, docs/farm.md) must share, stored in their EXRs as
+// strahl:split_fingerprint: imageFingerprint without the samples per pixel
+// (the parts differ in them), plus the accelerator (the naive tracer need not
+// round hits as Embree does). Not the tile size, threads or packet width:
+// they leave the image bit-identical; the crop is compared separately.
+std::string splitFingerprint(const Options& options, const SceneDesc& desc);
+
 }  // namespace strahl::app
