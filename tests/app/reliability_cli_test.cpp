@@ -3,7 +3,6 @@
 // signal; a checkpointed, interrupted and resumed render equals the
 // uninterrupted one bit for bit; --time-limit stops at a whole sample pass.
 
-#include <OpenImageIO/imagebuf.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -17,6 +16,7 @@
 #include <vector>
 
 #include "app/cli_runner.h"
+#include "app/exr_file.h"
 #include "test_support.h"
 
 namespace strahl {
@@ -31,40 +31,11 @@ const std::string kScene =
     (test::sourceDir() / "scenes/statistical/glossy_room.json").string();
 const std::string kFlags = " --width 48 --height 36 --exr-float -q --aov variance --aov albedo";
 
-struct Exr {
-    std::vector<float> pixels;
-    int channels = 0;
-    std::string partial, samples, stopped;
-};
+using test::ExrFile;
+using test::expectIdentical;
+using test::readExr;
 
-Exr readExr(const fs::path& file) {
-    OIIO::ImageBuf image(file.string());
-    Exr e;
-    if (!image.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
-        ADD_FAILURE() << "cannot read " << file << ": " << image.geterror();
-        return e;
-    }
-    const OIIO::ImageSpec& spec = image.spec();
-    e.channels = spec.nchannels;
-    e.pixels.resize(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
-    image.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, e.pixels.data());
-    e.partial = spec.get_string_attribute("strahl:partial");
-    e.samples = spec.get_string_attribute("strahl:samples");
-    e.stopped = spec.get_string_attribute("strahl:stopped");
-    return e;
-}
-
-// Bit-identical: every channel of every pixel, compared as floats (no NaNs).
-void expectIdentical(const Exr& a, const Exr& b, const std::string& what) {
-    ASSERT_EQ(a.channels, b.channels) << what;
-    ASSERT_EQ(a.pixels.size(), b.pixels.size()) << what;
-    size_t differing = 0;
-    for (size_t i = 0; i < a.pixels.size(); ++i) differing += a.pixels[i] != b.pixels[i];
-    EXPECT_EQ(differing, 0u) << what << ": " << differing << " of " << a.pixels.size()
-                             << " values differ";
-}
-
-Exr renderWith(const fs::path& dir, const std::string& name, const std::string& flags) {
+ExrFile renderWith(const fs::path& dir, const std::string& name, const std::string& flags) {
     const fs::path out = dir / (name + ".exr");
     const test::RunResult r = runStrahl("render " + kScene + kFlags + " -o " + out.string() + flags);
     EXPECT_EQ(r.status, 0) << r.err;
@@ -73,7 +44,7 @@ Exr renderWith(const fs::path& dir, const std::string& name, const std::string& 
 
 TEST(Determinism, SameImageForAnyThreadCountAndTileSize) {
     const fs::path dir = test::scratchDir("determinism");
-    const Exr reference = renderWith(dir, "t1", " --spp 8 --threads 1 --tile 32");
+    const ExrFile reference = renderWith(dir, "t1", " --spp 8 --threads 1 --tile 32");
     expectIdentical(reference, renderWith(dir, "t2", " --spp 8 --threads 2 --tile 32"), "2 threads");
     expectIdentical(reference, renderWith(dir, "t2x8", " --spp 8 --threads 2 --tile 8"),
                     "2 threads, 8-pixel tiles");
@@ -117,7 +88,7 @@ class Interrupt : public ::testing::TestWithParam<int> {};
 TEST_P(Interrupt, WritesAPartialImageAndResumesToTheSameImageBitForBit) {
     const int signal = GetParam();
     const fs::path dir = test::scratchDir("interrupt-" + std::to_string(signal));
-    const Exr full = renderWith(dir, "full", " --spp 64");
+    const ExrFile full = renderWith(dir, "full", " --spp 64");
 
     // Interval 0: a checkpoint after every pass; its appearance tells that the
     // render is under way. 64 spp at 48 x 36 lasts long enough to be caught.
@@ -135,7 +106,7 @@ TEST_P(Interrupt, WritesAPartialImageAndResumesToTheSameImageBitForBit) {
     EXPECT_TRUE(test::contains(err, signal == SIGINT ? "interrupted by SIGINT" : "by SIGTERM"))
         << err;
 
-    const Exr cut = readExr(partial);
+    const ExrFile cut = readExr(partial);
     EXPECT_EQ(cut.partial, "1");
     EXPECT_EQ(cut.stopped, signal == SIGINT ? "SIGINT" : "SIGTERM");
     EXPECT_LT(std::stoi(cut.samples), 64);
@@ -144,7 +115,7 @@ TEST_P(Interrupt, WritesAPartialImageAndResumesToTheSameImageBitForBit) {
     const test::RunResult r = runStrahl("render " + kScene + kFlags + " --spp 64 -o " +
                                         resumed.string() + " --resume " + checkpoint.string());
     ASSERT_EQ(r.status, 0) << r.err;
-    const Exr done = readExr(resumed);
+    const ExrFile done = readExr(resumed);
     EXPECT_EQ(done.partial, "0");
     EXPECT_EQ(done.samples, "64");
     expectIdentical(full, done, "resumed after " + cut.samples + " samples");
@@ -158,7 +129,7 @@ INSTANTIATE_TEST_SUITE_P(Signals, Interrupt, ::testing::Values(SIGINT, SIGTERM),
 TEST(Checkpoint, ResumingAFinishedCheckpointRendersNothingAndGivesTheSameImage) {
     const fs::path dir = test::scratchDir("checkpoint-complete");
     const fs::path checkpoint = dir / "c.ckpt";
-    const Exr full = renderWith(dir, "full", " --spp 4 --checkpoint " + checkpoint.string());
+    const ExrFile full = renderWith(dir, "full", " --spp 4 --checkpoint " + checkpoint.string());
     ASSERT_TRUE(fs::exists(checkpoint));
     expectIdentical(full, renderWith(dir, "again", " --spp 4 --resume " + checkpoint.string()),
                     "resumed from a complete checkpoint");
@@ -187,7 +158,7 @@ TEST(Checkpoint, OtherSettingsOrAForeignFileAreOneClearError) {
 TEST(TimeLimit, StopsAtAWholeSamplePassAndWritesTheImage) {
     const fs::path dir = test::scratchDir("time-limit");
     // A limit of 0 s stops after the first pass.
-    const Exr cut = renderWith(dir, "cut", " --spp 16 --time-limit 0");
+    const ExrFile cut = renderWith(dir, "cut", " --spp 16 --time-limit 0");
     EXPECT_EQ(cut.partial, "1");
     EXPECT_EQ(cut.samples, "1");
     EXPECT_EQ(cut.stopped, "time limit");

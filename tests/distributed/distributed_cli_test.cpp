@@ -9,7 +9,6 @@
 // root (set through its environment variables here, not globally) and
 // --oversubscribe for more ranks than cores.
 
-#include <OpenImageIO/imagebuf.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -19,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "app/exr_file.h"
 #include "test_support.h"
 
 namespace strahl {
@@ -65,42 +65,11 @@ std::string strahlRender(const fs::path& out, const std::string& flags,
            out.string() + " --distributed";
 }
 
-struct Exr {
-    std::vector<float> pixels;
-    int channels = 0;
-    std::vector<std::string> names;
-    std::string partial, samples;
-};
+using test::ExrFile;
+using test::expectIdentical;
+using test::readExr;
 
-Exr readExr(const fs::path& file) {
-    OIIO::ImageBuf image(file.string());
-    Exr e;
-    if (!image.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
-        ADD_FAILURE() << "cannot read " << file << ": " << image.geterror();
-        return e;
-    }
-    const OIIO::ImageSpec& spec = image.spec();
-    e.channels = spec.nchannels;
-    e.names = spec.channelnames;
-    e.pixels.resize(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
-    image.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, e.pixels.data());
-    e.partial = spec.get_string_attribute("strahl:partial");
-    e.samples = spec.get_string_attribute("strahl:samples");
-    return e;
-}
-
-// Every channel of every pixel, compared as bits (the depth AOV holds +inf
-// for misses; no NaNs).
-void expectIdentical(const Exr& a, const Exr& b, const std::string& what) {
-    ASSERT_EQ(a.names, b.names) << what;
-    ASSERT_EQ(a.pixels.size(), b.pixels.size()) << what;
-    size_t differing = 0;
-    for (size_t i = 0; i < a.pixels.size(); ++i) differing += a.pixels[i] != b.pixels[i];
-    EXPECT_EQ(differing, 0u) << what << ": " << differing << " of " << a.pixels.size()
-                             << " values differ";
-}
-
-Exr renderLocally(const fs::path& dir) {
+ExrFile renderLocally(const fs::path& dir) {
     const fs::path out = dir / "local.exr";
     const std::string command = std::string(STRAHL_BINARY) + " render " + kScene + kImage +
                                 " --threads 2 -o " + out.string();
@@ -117,15 +86,15 @@ void expectEmpty(const fs::path& dir) {
 
 TEST(Distributed, ThreeRanksGiveTheSingleProcessImageBitForBit) {
     const fs::path dir = test::scratchDir("distributed-identical");
-    const Exr local = renderLocally(dir);
-    ASSERT_EQ(local.channels, 3 + 3 + 1 + 3 + 3 + 1 + 3);  // beauty and the six AOVs
+    const ExrFile local = renderLocally(dir);
+    ASSERT_EQ(local.channels.size(), 3u + 3 + 1 + 3 + 3 + 1 + 3);  // beauty and the six AOVs
 
     // 2 workers with 2 render threads each; 8-pixel tiles: 35 tiles, the last
     // column 2 pixels wide and the last row 5 high.
     const fs::path out = dir / "mpi3.exr";
     JobResult r = mpirun("-np 3 " + strahlRender(out, " --threads 2 --tile 8"));
     ASSERT_EQ(r.status, 0) << r.err;
-    const Exr three = readExr(out);
+    const ExrFile three = readExr(out);
     expectIdentical(local, three, "mpirun -np 3, 8-pixel tiles");
     EXPECT_EQ(three.partial, "0");
     EXPECT_EQ(three.samples, "4");
