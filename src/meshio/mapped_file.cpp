@@ -12,6 +12,7 @@
 #include <system_error>
 
 #include "strahl/core/error.h"
+#include "text_scan.h"
 
 namespace fs = std::filesystem;
 
@@ -31,12 +32,7 @@ struct Descriptor {
 }  // namespace
 
 MappedFile::MappedFile(const fs::path& file) {
-    // Check the type before open(): opening a FIFO would block.
-    std::error_code statusError;
-    const fs::file_status status = fs::status(file, statusError);
-    if (!statusError && fs::exists(status) && !fs::is_regular_file(status) &&
-        !fs::is_directory(status))
-        fail(file.string(), ": cannot open: not a regular file");
+    refuseSpecialFile(file);  // before open(): opening a FIFO would block
 
     errno = 0;
     const Descriptor d{::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY)};

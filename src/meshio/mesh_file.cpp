@@ -27,17 +27,16 @@ struct FileCloser {
 
 }  // namespace
 
-std::string readWholeFile(const fs::path& file) {
-    // Regular files only (and folders, whose read fails with EISDIR below): a
-    // device such as /dev/zero never ends and a FIFO blocks the open, so an
-    // mtllib line or a scene's Bezier patch file naming one would exhaust memory
-    // or hang (an out-of-memory in fuzz/fuzz_obj and fuzz_scene_json; the inputs
-    // are in tests/data/fuzz/).
+void refuseSpecialFile(const fs::path& file) {
     std::error_code statusError;
     const fs::file_status status = fs::status(file, statusError);
     if (!statusError && fs::exists(status) && !fs::is_regular_file(status) &&
         !fs::is_directory(status))
         fail(file.string(), ": cannot open: not a regular file");
+}
+
+std::string readWholeFile(const fs::path& file) {
+    refuseSpecialFile(file);  // a folder fails with EISDIR below
 
     errno = 0;
     std::unique_ptr<std::FILE, FileCloser> f(std::fopen(file.c_str(), "rb"));

@@ -22,6 +22,14 @@ namespace strahl::meshio {
 // device, FIFO or socket. (Defined in mesh_file.cpp.)
 std::string readWholeFile(const std::filesystem::path& file);
 
+// Throws "file: cannot open: not a regular file" for an existing device, FIFO
+// or socket (a folder or a missing file is left to the open that follows). A
+// device such as /dev/zero never ends and a FIFO blocks the open, so an mtllib
+// line or a scene's Bezier patch file naming one would exhaust memory or hang
+// (found by fuzz/fuzz_obj and fuzz_scene_json; the inputs are in
+// tests/data/fuzz/). Call it before opening. (Defined in mesh_file.cpp.)
+void refuseSpecialFile(const std::filesystem::path& file);
+
 // Prints "strahl: warning: <message>" as one line on stderr.
 void warn(const std::string& message);
 
