@@ -103,50 +103,55 @@ std::string buildFigures(const fs::path& scene, BvhQuality quality, bool compact
                   mib(peakResidentBytes()));
 }
 
-// Load + BVH + the first tile of a full-size frame: what a user waits for
-// before the first pixel appears.
-std::string timeToFirstPixel(const fs::path& scene) {
-    const auto start = Clock::now();
-    const SceneDesc desc = parseSceneFile(scene);
+// Parses and builds `scene` (default BVH settings) and renders the pixels of
+// `crop` at `spp`: what the two render measurements share.
+struct CropRender {
     BuildTimings timings;
-    const World world = buildWorld(desc, BuildOptions{}, &timings);
+    RenderStats stats;
+    size_t triangles = 0, instancedTriangles = 0;
+};
+
+CropRender renderCrop(const SceneDesc& desc, const PixelRect& crop, int spp, int tileSize) {
+    CropRender result;
+    const World world = buildWorld(desc, BuildOptions{}, &result.timings);
+    result.triangles = world.triangleCount();
+    result.instancedTriangles = world.instancedTriangleCount();
     const Camera camera = buildCamera(desc.camera, desc.film.width, desc.film.height);
     const auto integrator = makeIntegrator(desc.render.integrator, world,
                                            buildIntegratorOptions(desc, camera));
-    // The tile in the middle of the frame (the top-left one shows sky only).
-    const int tile = 32, x0 = desc.film.width / 2, y0 = desc.film.height / 2;
-    Film film(desc.film.width, desc.film.height, PixelRect{x0, y0, x0 + tile, y0 + tile}, {});
+    Film film(desc.film.width, desc.film.height, crop, desc.film.aovs);
     RenderOptions options;
-    options.tileSize = tile;
-    options.spp = desc.render.spp;
+    options.tileSize = tileSize;
+    options.spp = spp;
     options.seed = desc.render.seed;
     options.filter = buildPixelFilter(desc.film);
-    const RenderStats stats = renderImage(world, camera, *integrator, film, options);
-    const double total = secondsSince(start);
-    return format("%.2f %.2f %.2f %.2f %.0f", timings.loadSeconds, timings.bvhSeconds,
-                  stats.firstTileSeconds, total, mib(peakResidentBytes()));
+    result.stats = renderImage(world, camera, *integrator, film, options);
+    return result;
+}
+
+// Load + BVH + the first tile of a full-size frame: what a user waits for
+// before the first pixel appears. The tile is the one in the middle of the
+// frame (the top-left one shows only sky).
+std::string timeToFirstPixel(const fs::path& scene) {
+    const auto start = Clock::now();
+    const SceneDesc desc = parseSceneFile(scene);
+    const int tile = 32, x0 = desc.film.width / 2, y0 = desc.film.height / 2;
+    const CropRender r =
+        renderCrop(desc, PixelRect{x0, y0, x0 + tile, y0 + tile}, desc.render.spp, tile);
+    return format("%.2f %.2f %.2f %.2f %.0f", r.timings.loadSeconds, r.timings.bvhSeconds,
+                  r.stats.firstTileSeconds, secondsSince(start), mib(peakResidentBytes()));
 }
 
 // A whole frame at the scene's resolution, 1 spp.
 std::string wholeFrame(const fs::path& scene) {
     const auto start = Clock::now();
     const SceneDesc desc = parseSceneFile(scene);
-    BuildTimings timings;
-    const World world = buildWorld(desc, BuildOptions{}, &timings);
-    const Camera camera = buildCamera(desc.camera, desc.film.width, desc.film.height);
-    const auto integrator = makeIntegrator(desc.render.integrator, world,
-                                           buildIntegratorOptions(desc, camera));
-    Film film(desc.film.width, desc.film.height,
-              PixelRect{0, 0, desc.film.width, desc.film.height}, desc.film.aovs);
-    RenderOptions options;
-    options.spp = 1;
-    options.seed = desc.render.seed;
-    options.filter = buildPixelFilter(desc.film);
-    const RenderStats stats = renderImage(world, camera, *integrator, film, options);
-    return format("%zu %zu %d %d %.2f %.2f %.2f %.2f %.2f %.0f", world.triangleCount(),
-                  world.instancedTriangleCount(), desc.film.width, desc.film.height,
-                  timings.loadSeconds, timings.bvhSeconds, stats.seconds,
-                  double(stats.totalRays()) / stats.seconds / 1e6, secondsSince(start),
+    const CropRender r =
+        renderCrop(desc, PixelRect{0, 0, desc.film.width, desc.film.height}, 1, 32);
+    return format("%zu %zu %d %d %.2f %.2f %.2f %.2f %.2f %.0f", r.triangles,
+                  r.instancedTriangles, desc.film.width, desc.film.height,
+                  r.timings.loadSeconds, r.timings.bvhSeconds, r.stats.seconds,
+                  double(r.stats.totalRays()) / r.stats.seconds / 1e6, secondsSince(start),
                   mib(peakResidentBytes()));
 }
 
