@@ -497,7 +497,7 @@ int runInfo(const Options& o) {
     std::printf("memory     shapes %s, bvh %s (%s, %s%s), peak resident %s\n",
                 formatBytes(world.shapeMemoryBytes()).c_str(),
                 formatBytes(world.accel->memoryBytes()).c_str(), o.bvhQuality.c_str(),
-                o.compact ? "compact" : "not compact",
+                o.compact ? "compact" : "not compact (--no-compact)",
                 world.triangleCount()
                     ? (", " +
                        formatBytes((world.shapeMemoryBytes() + world.accel->memoryBytes()) /

@@ -27,7 +27,7 @@ const std::string kSmall = " --width 32 --height 24 --spp 1";
 TEST(MemoryCli, EveryBvhQualityAndCompactModeRenders) {
     const fs::path dir = test::scratchDir("memory-cli-quality");
     for (const char* flags : {"--bvh-quality low", "--bvh-quality medium", "--bvh-quality high",
-                              "--compact", "--bvh-quality low --compact"}) {
+                              "--compact", "--no-compact", "--bvh-quality low --no-compact"}) {
         const fs::path out = dir / "a.exr";
         fs::remove(out);
         const RunResult r = runStrahl("render " + kScene + kSmall + " " + flags + " -o " + out.string());
@@ -65,9 +65,12 @@ TEST(MemoryCli, BadSizesAndQualitiesAreUsageErrors) {
 }
 
 TEST(MemoryCli, InfoReportsBvhMemoryPerTriangleAndPeakResident) {
-    const RunResult r = runStrahl("info " + kScene + " --compact --bvh-quality low");
+    const RunResult r = runStrahl("info " + kScene + " --bvh-quality low");
     EXPECT_EQ(r.status, 0) << r.err;
-    EXPECT_THAT(r.out, HasSubstr("(low, compact, "));
+    EXPECT_THAT(r.out, HasSubstr("(low, compact, "));  // compact by default
+    const RunResult full = runStrahl("info " + kScene + " --no-compact");
+    EXPECT_EQ(full.status, 0) << full.err;
+    EXPECT_THAT(full.out, HasSubstr("(medium, not compact (--no-compact), "));
     EXPECT_THAT(r.out, HasSubstr(" per stored triangle with its mesh data), peak resident "));
 }
 

@@ -20,7 +20,10 @@ struct BuildOptions {
     int threads = 0;  // 0: all hardware threads
     AccelKind accel = AccelKind::Embree;
     BvhQuality bvhQuality = BvhQuality::Medium;  // Embree only
-    bool compact = false;                        // Embree's compact BVH
+    // Embree's compact BVH, the default as in Cycles: on 10^7 triangles it
+    // halves the peak memory and builds 1.8x faster for rays ~10% slower
+    // (docs/memory.md).
+    bool compact = true;
     // When not 0: resident memory allowed after loading, and for the process
     // while Embree builds (its memory monitor; see AccelBuildOptions). Going
     // past it is a strahl::Error, not a kill by the kernel.
