@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <limits>
 #include <optional>
 #include <set>
@@ -377,6 +378,20 @@ private:
         return out;
     }
 
+    // Runs a tinygltf call. tinygltf 2.7 throws for some inputs instead of
+    // failing (std::out_of_range for a .glb whose BIN chunk is longer than a
+    // zero-length buffer, say): that becomes a strahl::Error naming the file.
+    template <typename Call>
+    bool guarded(Call&& call) const {
+        try {
+            return call();
+        } catch (const Error&) {
+            throw;
+        } catch (const std::exception& e) {
+            error("tinygltf could not read the file: ", e.what());
+        }
+    }
+
     // "file: <args>"; the arguments start with the place ("meshes[0].primitives[1]: ").
     template <typename... Args>
     [[noreturn]] void error(const Args&... args) const {
@@ -408,17 +423,21 @@ private:
             const uint32_t length = checkGlbLayout(bytes);
             checkImageViewsStartInTheirBuffers(
                 bytes.substr(kGlbHeaderBytes + kGlbChunkHeaderBytes, readLe32(bytes, 12)));
-            ok = loader.LoadBinaryFromMemory(&model_, &err, &warn,
-                                             reinterpret_cast<const unsigned char*>(bytes.data()),
-                                             length, folder.string());
+            ok = guarded([&] {
+                return loader.LoadBinaryFromMemory(
+                    &model_, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+                    length, folder.string());
+            });
         } else {
             if (bytes.size() > std::numeric_limits<unsigned int>::max())
                 fail(name_, ": ", bytes.size(),
                      " bytes of JSON is more than tinygltf reads (4 GiB)");
             checkImageViewsStartInTheirBuffers(bytes);
-            ok = loader.LoadASCIIFromString(&model_, &err, &warn, bytes.data(),
-                                            static_cast<unsigned int>(bytes.size()),
-                                            folder.string());
+            ok = guarded([&] {
+                return loader.LoadASCIIFromString(&model_, &err, &warn, bytes.data(),
+                                                  static_cast<unsigned int>(bytes.size()),
+                                                  folder.string());
+            });
         }
         if (!ok) fail(name_, ": ", err.empty() ? "cannot parse the glTF" : oneLine(err));
         // Messages tinygltf reports without failing are warnings.

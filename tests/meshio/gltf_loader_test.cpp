@@ -513,6 +513,17 @@ TEST(GltfLoader, MutatedGlbEitherLoadsOrFailsWithAStrahlError) {
 // tinygltf 2.7 would index the buffer there before checking anything
 // (undefined behaviour, caught by the sanitizer build); the loader refuses the
 // file before tinygltf reads it.
+// tinygltf 2.7 throws std::out_of_range for a zero-length buffer next to a
+// BIN chunk instead of failing: the loader turns that into its own error,
+// naming the file, like every other malformed file.
+TEST(GltfLoader, AnExceptionFromTinygltfBecomesAnErrorNamingTheFile) {
+    const fs::path dir = test::scratchDir("gltf-tinygltf-throws");
+    writeFile(dir / "m.glb", glb(R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 0}]})",
+                                 std::string(8, 'x')));
+    const std::string message = test::errorMessage([&] { loadGltf(dir / "m.glb"); });
+    EXPECT_THAT(message, HasSubstr("m.glb: "));
+}
+
 TEST(GltfLoader, ImageViewStartingPastItsBufferIsAnError) {
     const fs::path dir = test::scratchDir("gltf-image-view");
     std::string glb = quadGlb();
