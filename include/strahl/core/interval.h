@@ -219,10 +219,13 @@ inline Interval powi(const Interval& a, int n) {
 }
 
 // x^y for x >= 0 (a negative base is clamped to 0: the general power is only
-// defined there; integer powers go through powi).
-inline double powr(double x, double y) { return std::pow(std::max(x, 0.0), y); }
+// defined there; integer powers go through powi). The clamp adds +0.0: -0.0
+// is not below 0.0, so std::max keeps it, and pow(-0.0, y) is -0.0 or -inf for
+// odd integer y; -0.0 + 0.0 is +0.0.
+inline double clampToNonNegative(double x) { return std::max(x, 0.0) + 0.0; }
+inline double powr(double x, double y) { return std::pow(clampToNonNegative(x), y); }
 inline Interval powr(const Interval& a, const Interval& y) {
-    const double lo = std::max(a.lo, 0.0), hi = std::max(a.hi, 0.0);
+    const double lo = clampToNonNegative(a.lo), hi = clampToNonNegative(a.hi);
     const double c[4] = {std::pow(lo, y.lo), std::pow(lo, y.hi), std::pow(hi, y.lo),
                          std::pow(hi, y.hi)};
     double l = kInf, h = -kInf;
