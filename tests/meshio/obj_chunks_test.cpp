@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "same_bits.h"
 #include "../../src/meshio/loader_tuning.h"  // internal to meshio
 #include "strahl/core/error.h"
 #include "strahl/meshio/mesh_file.h"
@@ -26,10 +27,7 @@ namespace {
 constexpr size_t kChunkSizes[] = {1, 2, 3, 5, 8, 13, 21, 40, 100, 333, 4096};
 constexpr size_t kWhole = size_t(1) << 40;  // one chunk: the line-by-line order
 
-template <typename T>
-bool sameBits(const std::vector<T>& a, const std::vector<T>& b) {
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
-}
+using test::sameBits;
 
 struct Outcome {
     LoadedMesh mesh;

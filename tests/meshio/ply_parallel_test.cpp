@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "same_bits.h"
 #include "../../src/meshio/loader_tuning.h"  // internal to meshio
 #include "strahl/core/error.h"
 #include "strahl/meshio/mesh_file.h"
@@ -110,11 +111,7 @@ std::string gridPly(uint32_t n, const Options& o) {
     return out;
 }
 
-// Every array equal bit for bit (memcmp: -0 and 0 differ, as they should).
-template <typename T>
-bool sameBits(const std::vector<T>& a, const std::vector<T>& b) {
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
-}
+using test::sameBits;
 
 void expectSameMesh(const TriangleMesh& a, const TriangleMesh& b) {
     EXPECT_TRUE(sameBits(a.positions, b.positions));
