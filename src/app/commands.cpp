@@ -163,21 +163,10 @@ BuildOptions buildOptions(const Options& o) {
     return build;
 }
 
-int renderScene(const Options& given, ProgressReporter& progress) {
-    const auto started = std::chrono::steady_clock::now();
-    const Options o = withFrameNames(given);
-    SceneDesc desc = parseSceneFile(o.scene);
-    applyOverrides(o, desc);
-    for (auto& out : desc.film.outputs)
-        out = expandFramePattern(out, o.frame.value_or(-1), o.scene + ": film.outputs:");
-    if (static_cast<long long>(desc.film.width) * desc.film.height > kMaxFilmPixels)
-        fail("image of ", desc.film.width, "x", desc.film.height, " pixels is larger than the limit of ",
-             kMaxFilmPixels, " pixels");
-    if (desc.film.outputs.empty())
-        fail(o.scene, ": no output image: give -o FILE or film.outputs in the scene");
-    // Fail on a bad output path or integrator name now, not after a long render.
-    // Distributed workers write nothing: only rank 0 checks the outputs.
-    const bool worker = distributed::role() == distributed::Role::Worker;
+// Everything that can be checked before the scene's meshes are loaded, so a
+// bad output path, integrator name, OCIO config or option combination fails
+// now, not after a long load or render.
+void checkBeforeLoading(const Options& o, const SceneDesc& desc, bool worker, bool raster) {
     if (!worker)
         for (const auto& out : desc.film.outputs) checkOutputPath(out);
     // A bad OCIO config must fail now, not after the render: load it if any
@@ -190,7 +179,6 @@ int renderScene(const Options& given, ProgressReporter& progress) {
         });
     if (!worker && (displayOutput || !o.color.configFile.empty())) DisplayTransform::get(o.color);
     requireIntegratorName(desc.render.integrator);
-    const bool raster = o.algorithm == "raster";
     if (raster) requireRasterSettings(desc.render.integrator, desc.render.spp);
     if (raster && (o.checkpoint || o.resume || o.timeLimit))
         fail("--checkpoint, --resume and --time-limit apply to ray tracing, not --algorithm raster");
@@ -204,6 +192,96 @@ int renderScene(const Options& given, ProgressReporter& progress) {
     if (o.distributed && o.skipExisting)
         fail("--skip-existing does not apply to --distributed: run it without, or check the "
              "outputs before starting the job");
+}
+
+// The metadata every output carries (docs/output.md): the settings, the
+// fingerprint, and for ray tracing whether the image is partial.
+ImageMetadata imageMetadata(const Options& o, const SceneDesc& desc, const Camera& camera,
+                            const RenderStats& stats, bool raster,
+                            const std::string& sceneFingerprint) {
+    ImageMetadata metadata;
+    metadata.renderSeconds = stats.seconds;
+    metadata.spp = desc.render.spp;
+    metadata.integrator = desc.render.integrator;
+    metadata.camera = describeCamera(desc.camera);
+    metadata.worldToCamera = camera.worldToCamera();
+    metadata.extra["seed"] = std::to_string(desc.render.seed);
+    metadata.extra["scene"] = desc.file.filename().string();
+    metadata.extra["algorithm"] = o.algorithm;
+    metadata.extra["fingerprint"] = sceneFingerprint;
+    if (o.frame) metadata.extra["frame"] = std::to_string(*o.frame);
+    const bool partial = stats.cancelled || stats.stoppedEarly;
+    if (!raster) {
+        // Every pixel has at least completedPasses samples; after an interrupt
+        // the tiles that were in flight have one more.
+        metadata.extra["samples"] = std::to_string(stats.completedPasses);
+        metadata.extra["partial"] = partial ? "1" : "0";
+        if (stats.cancelled) metadata.extra["stopped"] = signalName(InterruptGuard::signalNumber());
+        if (stats.stoppedEarly) metadata.extra["stopped"] = "time limit";
+        metadata.extra["accel"] = o.accel;
+    }
+    // A part of a split render: the samples it was asked for (a partial part
+    // has fewer in some pixels, which strahl merge detects and refuses).
+    if (o.sampleOffset) {
+        const auto begin = static_cast<uint32_t>(*o.sampleOffset);
+        metadata.part = SamplePart{{{begin, begin + static_cast<uint32_t>(desc.render.spp)}},
+                                   splitFingerprint(o, desc)};
+    }
+    return metadata;
+}
+
+// The summary and memory lines after a render (docs/cli.md); `raster` is
+// null for ray tracing.
+void printSummary(const SceneDesc& desc, const World& world, const BuildTimings& timings,
+                  const RenderStats& stats, const RasterStats* raster) {
+    if (raster) {
+        std::fprintf(stderr,
+                     "summary: load %.2f s, raster %.2f s | %s triangles (%s in view), %s "
+                     "fragments, %s pixels covered | %s, 1 spp, rasterized\n",
+                     timings.loadSeconds, raster->seconds,
+                     humanCount(double(raster->triangles)).c_str(),
+                     humanCount(double(raster->trianglesInView)).c_str(),
+                     humanCount(double(raster->fragments)).c_str(),
+                     humanCount(double(raster->coveredPixels)).c_str(),
+                     desc.render.integrator.c_str());
+    } else {
+        const double rays = static_cast<double>(stats.totalRays());
+        std::fprintf(stderr,
+                     "summary: load %.2f s, bvh %.2f s, render %.2f s, first pixel after %.2f s "
+                     "| %s rays (%s camera, %s shadow, %s bounce), %.1f Mrays/s | %s, %d spp, "
+                     "%s\n",
+                     timings.loadSeconds, timings.bvhSeconds, stats.seconds,
+                     timings.loadSeconds + timings.bvhSeconds + stats.firstTileSeconds,
+                     humanCount(rays).c_str(), humanCount(double(stats.cameraRays)).c_str(),
+                     humanCount(double(stats.shadowRays)).c_str(),
+                     humanCount(double(stats.bounceRays)).c_str(),
+                     stats.seconds > 0 ? rays / stats.seconds / 1e6 : 0.0,
+                     desc.render.integrator.c_str(), desc.render.spp,
+                     stats.packetWidth > 1 ? ("packets of " + std::to_string(stats.packetWidth)).c_str()
+                                           : "single rays");
+    }
+    std::fprintf(stderr, "memory: shapes %s, bvh %s, peak resident %s\n",
+                     formatBytes(world.shapeMemoryBytes()).c_str(),
+                     formatBytes(world.accel->memoryBytes()).c_str(),
+                     formatBytes(peakResidentBytes()).c_str());
+}
+
+int renderScene(const Options& given, ProgressReporter& progress) {
+    const auto started = std::chrono::steady_clock::now();
+    const Options o = withFrameNames(given);
+    SceneDesc desc = parseSceneFile(o.scene);
+    applyOverrides(o, desc);
+    for (auto& out : desc.film.outputs)
+        out = expandFramePattern(out, o.frame.value_or(-1), o.scene + ": film.outputs:");
+    if (static_cast<long long>(desc.film.width) * desc.film.height > kMaxFilmPixels)
+        fail("image of ", desc.film.width, "x", desc.film.height, " pixels is larger than the limit of ",
+             kMaxFilmPixels, " pixels");
+    if (desc.film.outputs.empty())
+        fail(o.scene, ": no output image: give -o FILE or film.outputs in the scene");
+    // Distributed workers write nothing: only rank 0 checks the outputs.
+    const bool worker = distributed::role() == distributed::Role::Worker;
+    const bool raster = o.algorithm == "raster";
+    checkBeforeLoading(o, desc, worker, raster);
     const PixelRect crop = cropWindow(o, desc);
     if (o.stats && !worker) checkStatsPath(*o.stats);
     // The sample offset decides the pixels too: regions of different sample
@@ -319,34 +397,8 @@ int renderScene(const Options& given, ProgressReporter& progress) {
     OutputSettings output;
     output.exrFloat = desc.film.exrFloat;
     output.color = o.color;
-    ImageMetadata metadata;
-    metadata.renderSeconds = stats.seconds;
-    metadata.spp = desc.render.spp;
-    metadata.integrator = desc.render.integrator;
-    metadata.camera = describeCamera(desc.camera);
-    metadata.worldToCamera = camera.worldToCamera();
-    metadata.extra["seed"] = std::to_string(desc.render.seed);
-    metadata.extra["scene"] = desc.file.filename().string();
-    metadata.extra["algorithm"] = o.algorithm;
-    metadata.extra["fingerprint"] = sceneFingerprint;
-    if (o.frame) metadata.extra["frame"] = std::to_string(*o.frame);
-    const bool partial = stats.cancelled || stats.stoppedEarly;
-    if (!raster) {
-        // Every pixel has at least completedPasses samples; after an interrupt
-        // the tiles that were in flight have one more.
-        metadata.extra["samples"] = std::to_string(stats.completedPasses);
-        metadata.extra["partial"] = partial ? "1" : "0";
-        if (stats.cancelled) metadata.extra["stopped"] = signalName(InterruptGuard::signalNumber());
-        if (stats.stoppedEarly) metadata.extra["stopped"] = "time limit";
-    }
-    if (!raster) metadata.extra["accel"] = o.accel;
-    // A part of a split render: the samples it was asked for (a partial part
-    // has fewer in some pixels, which strahl merge detects and refuses).
-    if (o.sampleOffset) {
-        const auto begin = static_cast<uint32_t>(*o.sampleOffset);
-        metadata.part = SamplePart{{{begin, begin + static_cast<uint32_t>(desc.render.spp)}},
-                                   splitFingerprint(o, desc)};
-    }
+    const ImageMetadata metadata =
+        imageMetadata(o, desc, camera, stats, raster, sceneFingerprint);
     for (const auto& out : desc.film.outputs) {
         writeImage(film, out, output, metadata);
         if (!o.quiet) std::fprintf(stderr, "wrote %s\n", out.string().c_str());
@@ -382,37 +434,7 @@ int renderScene(const Options& given, ProgressReporter& progress) {
         std::fprintf(stderr, "time limit reached: stopped after %d of %d samples per pixel\n",
                      stats.completedPasses, desc.render.spp);
 
-    if (!o.quiet && raster) {
-        std::fprintf(stderr,
-                     "summary: load %.2f s, raster %.2f s | %s triangles (%s in view), %s "
-                     "fragments, %s pixels covered | %s, 1 spp, rasterized\n",
-                     timings.loadSeconds, rasterStats.seconds,
-                     humanCount(double(rasterStats.triangles)).c_str(),
-                     humanCount(double(rasterStats.trianglesInView)).c_str(),
-                     humanCount(double(rasterStats.fragments)).c_str(),
-                     humanCount(double(rasterStats.coveredPixels)).c_str(),
-                     desc.render.integrator.c_str());
-    } else if (!o.quiet) {
-        const double rays = static_cast<double>(stats.totalRays());
-        std::fprintf(stderr,
-                     "summary: load %.2f s, bvh %.2f s, render %.2f s, first pixel after %.2f s "
-                     "| %s rays (%s camera, %s shadow, %s bounce), %.1f Mrays/s | %s, %d spp, "
-                     "%s\n",
-                     timings.loadSeconds, timings.bvhSeconds, stats.seconds,
-                     timings.loadSeconds + timings.bvhSeconds + stats.firstTileSeconds,
-                     humanCount(rays).c_str(), humanCount(double(stats.cameraRays)).c_str(),
-                     humanCount(double(stats.shadowRays)).c_str(),
-                     humanCount(double(stats.bounceRays)).c_str(),
-                     stats.seconds > 0 ? rays / stats.seconds / 1e6 : 0.0,
-                     desc.render.integrator.c_str(), desc.render.spp,
-                     stats.packetWidth > 1 ? ("packets of " + std::to_string(stats.packetWidth)).c_str()
-                                           : "single rays");
-    }
-    if (!o.quiet)
-        std::fprintf(stderr, "memory: shapes %s, bvh %s, peak resident %s\n",
-                     formatBytes(world.shapeMemoryBytes()).c_str(),
-                     formatBytes(world.accel->memoryBytes()).c_str(),
-                     formatBytes(peakResidentBytes()).c_str());
+    if (!o.quiet) printSummary(desc, world, timings, stats, raster ? &rasterStats : nullptr);
     return 0;
 }
 
