@@ -44,19 +44,9 @@ while (($#)); do
 done
 ((${#targets[@]})) || targets=("${all_targets[@]}")
 
-# clang with libFuzzer and the sanitizer runtimes (Debian 12: clang-14 and
-# libclang-rt-14-dev; scripts/setup.sh installs them too).
-missing=()
-for p in clang-14 libclang-rt-14-dev; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if ((${#missing[@]})); then
-  echo "fuzz: installing ${missing[*]}"
-  sudo=""
-  [ "$(id -u)" -eq 0 ] || sudo="sudo"
-  $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}"
-fi
+# clang with libFuzzer and the sanitizer runtimes (clang-14, libclang-rt-14-dev
+# in scripts/packages.txt).
+"$root/scripts/install-packages.sh"
 cc=clang
 cxx=clang++
 command -v "$cxx" >/dev/null || { cc=clang-14; cxx=clang++-14; }
