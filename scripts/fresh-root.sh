@@ -99,6 +99,7 @@ else
     fetch_debootstrap() {
       local tmp
       tmp="$(mktemp -d)"
+      chmod 755 "$tmp"  # apt downloads as its own user (_apt)
       (cd "$tmp" && { apt-get download debootstrap || { apt-get update && apt-get download debootstrap; }; }) &&
         rm -rf "$tool" && dpkg-deb -x "$tmp"/debootstrap_*.deb "$tool" && rm -rf "$tmp"
     }
