@@ -21,15 +21,20 @@ TextureHandle addTexture(World& world, const fs::path& file, TextureEncoding enc
     }
 }
 
+// Registers `file` (if any) and points `ref` at it.
+void bindTexture(World& world, const fs::path& file, TextureEncoding encoding,
+                 const std::string& where, TextureRef& ref) {
+    ref.file = file;
+    ref.handle = addTexture(world, file, encoding, where);
+}
+
 // What OBJ and glTF materials map alike: the emission (clamped at 0) with its
 // texture, and the normal map; both call it after adding their other textures.
 void setEmissionAndNormalMap(const MeshMaterial& m, const std::string& name, World& world,
                              Material& mat) {
     mat.emission.value = glm::max(m.emission, Color(0.0f));
-    if (!m.emissionTexture.empty())
-        mat.emission.texture = addTexture(world, m.emissionTexture, TextureEncoding::Color, name);
-    if (!m.normalTexture.empty())
-        mat.normalMap = addTexture(world, m.normalTexture, TextureEncoding::Data, name);
+    bindTexture(world, m.emissionTexture, TextureEncoding::Color, name, mat.emission.texture);
+    bindTexture(world, m.normalTexture, TextureEncoding::Data, name, mat.normalMap);
 }
 
 // OBJ's Phong exponent Ns runs 0..1000; the (Blinn-)Phong lobes need >= 0.
@@ -44,24 +49,26 @@ Material fromObj(const MeshMaterial& m, const std::string& name, World& world) {
                        m.dissolve < 1.0f;
     const bool mirror = m.illum == 3 || m.illum == 5;
     if (glass) {
+        DielectricMaterial dielectric;
         // Ni <= 1 (often 1 or absent in exported files) has no interface: 1.5.
-        mat.type = Material::Type::Dielectric;
-        mat.ior = m.ior > 1.0001f ? std::min(m.ior, 4.0f) : 1.5f;
+        dielectric.ior = m.ior > 1.0001f ? std::min(m.ior, 4.0f) : 1.5f;
         // Clear glass: Tf is as unreliable a tint as a test (McGuire's glass
         // sphere has Tf 0.1, which would make it nearly black).
-        mat.color.value = Color(1.0f);
+        dielectric.tint.value = Color(1.0f);
+        mat.kind = dielectric;
     } else if (mirror) {
         // A mirror whose colour is Ks: a smooth conductor with eta = 1 and
         // the k that gives normal-incidence reflectance Ks,
         // F0 = k^2 / (4 + k^2)  =>  k = 2 sqrt(F0 / (1 - F0)).
-        mat.type = Material::Type::Conductor;
+        ConductorMaterial conductor;
         const Color f0 = glm::clamp(maxComponent(m.specular) > 0.0f ? m.specular : Color(0.9f),
                                     Color(0.0f), Color(0.999f));
-        mat.eta = Color(1.0f);
-        mat.k = 2.0f * glm::sqrt(f0 / (Color(1.0f) - f0));
-        mat.roughness.value = 0.0f;
+        conductor.eta = Color(1.0f);
+        conductor.k = 2.0f * glm::sqrt(f0 / (Color(1.0f) - f0));
+        conductor.roughness.value = 0.0f;
+        mat.kind = conductor;
     } else if (maxComponent(m.specular) > 0.0f && m.shininess > 0.0f) {
-        mat.type = Material::Type::Phong;
+        PhongMaterial phong;
         Color kd = glm::max(m.diffuse, Color(0.0f)), ks = glm::max(m.specular, Color(0.0f));
         // Many .mtl files have Kd + Ks > 1; scale both down to conserve energy.
         const float sum = maxComponent(kd + ks);
@@ -69,19 +76,24 @@ Material fromObj(const MeshMaterial& m, const std::string& name, World& world) {
             kd /= sum;
             ks /= sum;
         }
-        mat.color.value = kd;
-        mat.specular = ks;
-        mat.exponent = std::min(m.shininess, kMaxObjExponent);
+        phong.color.value = kd;
+        phong.specular = ks;
+        phong.exponent = std::min(m.shininess, kMaxObjExponent);
+        if (!m.diffuseTexture.empty()) {
+            // map_Kd replaces Kd in most exporters' files (Sponza's Kd are grey
+            // placeholders), so the texture is used unscaled, up to 1 - Ks.
+            bindTexture(world, m.diffuseTexture, TextureEncoding::Color, name, phong.color.texture);
+            phong.color.value = Color(1.0f) - phong.specular;
+        }
+        mat.kind = phong;
     } else {
-        mat.type = Material::Type::Diffuse;
-        mat.color.value = glm::clamp(m.diffuse, Color(0.0f), Color(1.0f));
-    }
-    if (!glass && !mirror && !m.diffuseTexture.empty()) {
-        mat.color.texture = addTexture(world, m.diffuseTexture, TextureEncoding::Color, name);
-        // map_Kd replaces Kd in most exporters' files (Sponza's Kd are grey
-        // placeholders), so the texture is used unscaled.
-        mat.color.value = Color(1.0f);
-        if (mat.type == Material::Type::Phong) mat.color.value = Color(1.0f) - mat.specular;
+        DiffuseMaterial diffuse;
+        diffuse.color.value = glm::clamp(m.diffuse, Color(0.0f), Color(1.0f));
+        if (!m.diffuseTexture.empty()) {
+            bindTexture(world, m.diffuseTexture, TextureEncoding::Color, name, diffuse.color.texture);
+            diffuse.color.value = Color(1.0f);  // as for Phong: map_Kd replaces Kd
+        }
+        mat.kind = diffuse;
     }
     setEmissionAndNormalMap(m, name, world, mat);
     return mat;
@@ -91,27 +103,27 @@ Material fromGltf(const MeshMaterial& m, const std::string& name, World& world) 
     Material mat;
     mat.name = name;
     const float transmission = maxComponent(m.transmission);
-    mat.ior = m.ior > 1.0001f ? std::min(m.ior, 4.0f) : 1.5f;
-    mat.roughness.value = std::clamp(m.roughness, 0.0f, 1.0f);
-    mat.roughness.channel = 1;  // glTF: roughness in G
+    const float ior = m.ior > 1.0001f ? std::min(m.ior, 4.0f) : 1.5f;
+    const float roughness = std::clamp(m.roughness, 0.0f, 1.0f);
     if (transmission > 0.5f) {
         // KHR_materials_transmission: a mostly transmissive surface is glass
         // tinted by the base colour (the mix of both lobes is not modelled).
-        mat.type = Material::Type::Dielectric;
-        mat.color.value = glm::clamp(m.diffuse, Color(0.0f), Color(1.0f));
+        DielectricMaterial dielectric;
+        dielectric.ior = ior;
+        dielectric.roughness.value = roughness;
+        dielectric.tint.value = glm::clamp(m.diffuse, Color(0.0f), Color(1.0f));
+        mat.kind = dielectric;
     } else {
-        mat.type = Material::Type::MetallicRoughness;
-        mat.color.value = glm::clamp(m.diffuse, Color(0.0f), Color(1.0f));
-        mat.metallic.value = std::clamp(m.metallic, 0.0f, 1.0f);
-        mat.metallic.channel = 2;  // glTF: metallic in B
-        if (!m.diffuseTexture.empty())
-            mat.color.texture = addTexture(world, m.diffuseTexture, TextureEncoding::Color, name);
-        if (!m.metallicRoughnessTexture.empty()) {
-            const TextureHandle mr =
-                addTexture(world, m.metallicRoughnessTexture, TextureEncoding::Data, name);
-            mat.metallic.texture = mr;
-            mat.roughness.texture = mr;
-        }
+        MetallicRoughnessMaterial mr;
+        mr.ior = ior;
+        mr.roughness.value = roughness;  // channel G, as glTF stores it
+        mr.color.value = glm::clamp(m.diffuse, Color(0.0f), Color(1.0f));
+        mr.metallic.value = std::clamp(m.metallic, 0.0f, 1.0f);  // channel B
+        bindTexture(world, m.diffuseTexture, TextureEncoding::Color, name, mr.color.texture);
+        bindTexture(world, m.metallicRoughnessTexture, TextureEncoding::Data, name,
+                    mr.metallic.texture);
+        mr.roughness.texture = mr.metallic.texture;  // one texture, two channels
+        mat.kind = mr;
     }
     setEmissionAndNormalMap(m, name, world, mat);
     return mat;
@@ -123,11 +135,9 @@ Material buildMaterial(const MaterialDesc& desc, const SceneDesc& scene, World& 
     Material mat = desc.material;
     mat.name = desc.name;
     const std::string where = scene.file.filename().string() + ": " + desc.where;
-    mat.color.texture = addTexture(world, desc.textures.color, TextureEncoding::Color, where);
-    mat.roughness.texture = addTexture(world, desc.textures.roughness, TextureEncoding::Data, where);
-    mat.metallic.texture = addTexture(world, desc.textures.metallic, TextureEncoding::Data, where);
-    mat.emission.texture = addTexture(world, desc.textures.emission, TextureEncoding::Color, where);
-    mat.normalMap = addTexture(world, desc.textures.normal, TextureEncoding::Data, where);
+    mat.forEachTexture([&](TextureRef& texture, TextureEncoding encoding) {
+        texture.handle = addTexture(world, texture.file, encoding, where);
+    });
     return mat;
 }
 

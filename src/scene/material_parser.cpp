@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <array>
+#include <optional>
+#include <span>
 
-#include "strahl/bsdf/bsdf.h"
+#include "strahl/core/closed_family.h"
 
 namespace strahl::scene_detail {
 
@@ -11,62 +13,19 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr std::array<std::string_view, 8> kTypes = {
-    "diffuse", "phong", "blinn", "conductor", "dielectric", "plastic", "metallic_roughness",
-    "emissive"};
-
-Material::Type typeFromName(const std::string& name) {
-    static constexpr Material::Type kByIndex[] = {
-        Material::Type::Diffuse,   Material::Type::Phong,      Material::Type::BlinnPhong,
-        Material::Type::Conductor, Material::Type::Dielectric, Material::Type::Plastic,
-        Material::Type::MetallicRoughness, Material::Type::Emissive};
-    const auto it = std::find(kTypes.begin(), kTypes.end(), name);
-    return kByIndex[it - kTypes.begin()];
-}
-
-// The keys each type accepts on top of the common ones.
-std::vector<std::string_view> allowedKeys(Material::Type type) {
-    std::vector<std::string_view> keys = {"name", "type", "emission", "two_sided", "normal_map",
-                                          "mapping"};
-    const auto add = [&](std::initializer_list<std::string_view> more) {
-        keys.insert(keys.end(), more.begin(), more.end());
-    };
-    switch (type) {
-        case Material::Type::Diffuse: add({"color", "diffuse"}); break;
-        case Material::Type::Phong:
-        case Material::Type::BlinnPhong: add({"color", "diffuse", "specular", "exponent"}); break;
-        case Material::Type::Conductor: add({"metal", "eta", "k", "roughness"}); break;
-        case Material::Type::Dielectric: add({"color", "ior", "roughness"}); break;
-        case Material::Type::Plastic: add({"color", "ior", "roughness"}); break;
-        case Material::Type::MetallicRoughness:
-            add({"color", "metallic", "roughness", "ior"});
-            break;
-        case Material::Type::Emissive: break;
-    }
-    return keys;
-}
-
-void requireKeys(const JsonValue& v, const std::string& type,
-                 const std::vector<std::string_view>& keys) {
-    for (const auto& item : v.raw().items()) {
-        if (std::find(keys.begin(), keys.end(), item.key()) == keys.end()) {
-            std::string list;
-            for (std::string_view k : keys) list += (list.empty() ? "" : ", ") + std::string(k);
-            v.fail("unknown key '", item.key(), "' for a ", type, " material (allowed: ", list, ")");
-        }
-    }
-}
+// The keys every material accepts; each kind adds its own (Kind::kKeys).
+constexpr std::array<std::string_view, 6> kCommonKeys = {"name", "type", "emission",
+                                                          "two_sided", "normal_map", "mapping"};
 
 fs::path textureFile(const JsonValue& v, const fs::path& folder) {
     return resolveExistingFile(folder, v, "texture file");
 }
 
 // A colour given as a number, [r, g, b], or {"texture": file, "scale": colour}.
-void parseTexturedColor(const JsonValue& v, const fs::path& folder, TexturedColor& out,
-                        fs::path& texture) {
+void parseTexturedColor(const JsonValue& v, const fs::path& folder, TexturedColor& out) {
     if (v.raw().is_object()) {
         v.requireKeys({"texture", "scale"});
-        texture = textureFile(v.get("texture"), folder);
+        out.texture.file = textureFile(v.get("texture"), folder);
         out.value = Color(1.0f);
         if (auto scale = v.find("scale")) out.value = scale->color();
         return;
@@ -76,10 +35,10 @@ void parseTexturedColor(const JsonValue& v, const fs::path& folder, TexturedColo
 
 // A scalar in [lo, hi] given as a number or {"texture": file, "channel": "g", "scale": x}.
 void parseTexturedFloat(const JsonValue& v, const fs::path& folder, float lo, float hi,
-                        TexturedFloat& out, fs::path& texture) {
+                        TexturedFloat& out) {
     if (v.raw().is_object()) {
         v.requireKeys({"texture", "channel", "scale"});
-        texture = textureFile(v.get("texture"), folder);
+        out.texture.file = textureFile(v.get("texture"), folder);
         out.value = 1.0f;
         if (auto scale = v.find("scale")) out.value = scale->numberIn(lo, hi);
         if (auto channel = v.find("channel")) {
@@ -89,6 +48,46 @@ void parseTexturedFloat(const JsonValue& v, const fs::path& folder, float lo, fl
         return;
     }
     out.value = v.numberIn(lo, hi);
+}
+
+// What a material kind's parse() reads the material object through
+// (strahl/material/kind_parsing.h lists the operations).
+class MaterialReader {
+public:
+    MaterialReader(const JsonValue& material, const fs::path& folder)
+        : material_(material), folder_(folder) {}
+
+    bool has(std::string_view key) const { return material_.has(key); }
+    std::optional<JsonValue> find(std::string_view key) const { return material_.find(key); }
+    template <typename... Args>
+    [[noreturn]] void fail(const Args&... args) const {
+        material_.fail(args...);
+    }
+    // Sets `out` if the key is present.
+    void texturedColor(std::string_view key, TexturedColor& out) const {
+        if (auto v = material_.find(key)) parseTexturedColor(*v, folder_, out);
+    }
+    void texturedFloat(std::string_view key, float lo, float hi, TexturedFloat& out) const {
+        if (auto v = material_.find(key)) parseTexturedFloat(*v, folder_, lo, hi, out);
+    }
+
+private:
+    const JsonValue& material_;
+    const fs::path& folder_;
+};
+
+void requireKeys(const JsonValue& v, const std::string& type,
+                 std::span<const std::string_view> kindKeys) {
+    for (const auto& item : v.raw().items()) {
+        const auto known = [&](std::span<const std::string_view> keys) {
+            return std::find(keys.begin(), keys.end(), item.key()) != keys.end();
+        };
+        if (known(kCommonKeys) || known(kindKeys)) continue;
+        std::string list;
+        for (std::string_view k : kCommonKeys) list += (list.empty() ? "" : ", ") + std::string(k);
+        for (std::string_view k : kindKeys) list += ", " + std::string(k);
+        v.fail("unknown key '", item.key(), "' for a ", type, " material (allowed: ", list, ")");
+    }
 }
 
 TextureMapping parseMapping(const JsonValue& v) {
@@ -116,72 +115,18 @@ MaterialDesc parseMaterial(const JsonValue& m, const fs::path& folder) {
     MaterialDesc desc;
     desc.where = m.pointer();
     Material& mat = desc.material;
+    static constexpr auto kTypes = kindNames<MaterialKind>();
     const std::string typeName =
-        m.has("type") ? m.get("type").oneOf(kTypes) : std::string("diffuse");
-    mat.type = typeFromName(typeName);
-    requireKeys(m, typeName, allowedKeys(mat.type));
-    MaterialTextures& tex = desc.textures;
-
-    // "diffuse" is the older name of a diffuse material's colour.
-    if (m.has("color") && m.has("diffuse")) m.fail("give either 'color' or 'diffuse', not both");
-    if (auto color = m.find("color")) parseTexturedColor(*color, folder, mat.color, tex.color);
-    if (auto color = m.find("diffuse")) parseTexturedColor(*color, folder, mat.color, tex.color);
-    if (mat.type == Material::Type::Dielectric && !m.has("color")) mat.color.value = Color(1.0f);
-    if (mat.type == Material::Type::MetallicRoughness && !m.has("color"))
-        mat.color.value = Color(1.0f);
-    if (auto specular = m.find("specular")) mat.specular = specular->color();
-    if (mat.type == Material::Type::Phong || mat.type == Material::Type::BlinnPhong) {
-        if (!m.has("specular")) mat.specular = Color(0.2f);
-        // Energy conservation of the (Blinn-)Phong sum needs kd + ks <= 1.
-        const Color sum = mat.color.value + mat.specular;
-        if (maxComponent(sum) > 1.0f)
-            m.fail("color + specular must not exceed 1 in any channel (energy conservation), got (",
-                   sum.x, ", ", sum.y, ", ", sum.z, ")");
-        // 10^4 is a mirror-like lobe; beyond it use a conductor.
-        if (auto exponent = m.find("exponent")) mat.exponent = exponent->numberIn(0.0f, 1e4f);
-    }
-    if (mat.type == Material::Type::Conductor) {
-        const bool preset = m.has("metal");
-        if (preset && (m.has("eta") || m.has("k")))
-            m.fail("give either 'metal' or 'eta' and 'k', not both");
-        if (preset) {
-            const JsonValue metal = m.get("metal");
-            const std::optional<MetalPreset> found = findMetalPreset(metal.string());
-            if (!found) {
-                std::string names;
-                for (const MetalPreset& p : metalPresets())
-                    names += (names.empty() ? "" : ", ") + std::string(p.name);
-                metal.fail("unknown metal '", metal.string(), "' (known: ", names, ")");
-            }
-            mat.eta = found->eta;
-            mat.k = found->k;
-        } else {
-            // Without a preset: a perfect-ish mirror of aluminium unless given.
-            const MetalPreset aluminium = *findMetalPreset("aluminium");
-            mat.eta = aluminium.eta;
-            mat.k = aluminium.k;
-            if (auto eta = m.find("eta")) mat.eta = eta->color();
-            if (auto k = m.find("k")) mat.k = k->color();
-        }
-    }
-    if (auto ior = m.find("ior")) {
-        // Below 1.0001 the interface vanishes; above 4 no common material.
-        mat.ior = ior->numberIn(1.0001f, 4.0f);
-    }
-    if (auto roughness = m.find("roughness"))
-        parseTexturedFloat(*roughness, folder, 0.0f, 1.0f, mat.roughness, tex.roughness);
-    if (mat.type == Material::Type::MetallicRoughness) {
-        mat.metallic.value = 1.0f;
-        if (auto metallic = m.find("metallic"))
-            parseTexturedFloat(*metallic, folder, 0.0f, 1.0f, mat.metallic, tex.metallic);
-        if (!m.has("roughness")) mat.roughness.value = 1.0f;  // glTF's default
-    }
-    if (auto emission = m.find("emission"))
-        parseTexturedColor(*emission, folder, mat.emission, tex.emission);
-    if (mat.type == Material::Type::Emissive && !m.has("emission"))
-        m.fail("an emissive material needs 'emission'");
+        m.has("type") ? m.get("type").oneOf(kTypes) : std::string(DiffuseMaterial::kName);
+    const MaterialReader reader(m, folder);
+    mat.kind = *withKindNamed<MaterialKind>(typeName, [&](auto kind) -> MaterialKind {
+        using Kind = typename decltype(kind)::type;
+        requireKeys(m, typeName, Kind::kKeys);
+        return Kind::parse(reader);
+    });
+    if (auto emission = m.find("emission")) parseTexturedColor(*emission, folder, mat.emission);
     if (auto twoSided = m.find("two_sided")) mat.twoSidedEmission = twoSided->boolean();
-    if (auto normal = m.find("normal_map")) tex.normal = textureFile(*normal, folder);
+    if (auto normal = m.find("normal_map")) mat.normalMap.file = textureFile(*normal, folder);
     if (auto mapping = m.find("mapping")) mat.mapping = parseMapping(*mapping);
     return desc;
 }

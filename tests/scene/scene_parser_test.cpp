@@ -186,11 +186,12 @@ TEST(SceneParser, MaterialsAndShapeReferences) {
                         "positions": [[0,0,0],[1,0,0],[0,1,0]], "indices": [0,1,2]}]})");
     ASSERT_EQ(s.materials.size(), 2u);
     EXPECT_EQ(s.materials[0].name, "red");
-    EXPECT_EQ(s.materials[0].material.color.value, Color(0.63f, 0.06f, 0.04f));
+    EXPECT_EQ(std::get<DiffuseMaterial>(s.materials[0].material.kind).color.value,
+              Color(0.63f, 0.06f, 0.04f));
     EXPECT_EQ(s.materials[0].material.emission.value, Color(0.0f));
     EXPECT_EQ(s.materials[0].where, "/materials/0");
     EXPECT_EQ(s.materials[1].name, "lamp");
-    EXPECT_EQ(s.materials[1].material.color.value, Color(0.0f));
+    EXPECT_EQ(std::get<DiffuseMaterial>(s.materials[1].material.kind).color.value, Color(0.0f));
     EXPECT_EQ(s.materials[1].material.emission.value, Color(10.0f, 8.0f, 6.0f));
     EXPECT_EQ(s.materials[1].where, "/materials/1");
 

@@ -284,9 +284,9 @@ TEST(ShadingInput, MissingMtlTextureIsAWarningAndKeepsTheConstantColour) {
     ASSERT_EQ(world.materials.size(), 2u);
     const Material& red = world.materials[1];
     EXPECT_EQ(red.name, "tri/red");
-    EXPECT_EQ(red.type, Material::Type::Diffuse);
-    EXPECT_FALSE(red.color.texture.valid());
-    EXPECT_EQ(red.color.value, Color(0.6f, 0.1f, 0.1f));
+    ASSERT_TRUE(std::holds_alternative<DiffuseMaterial>(red.kind));
+    EXPECT_FALSE(std::get<DiffuseMaterial>(red.kind).color.texture.valid());
+    EXPECT_EQ(std::get<DiffuseMaterial>(red.kind).color.value, Color(0.6f, 0.1f, 0.1f));
 }
 
 }  // namespace

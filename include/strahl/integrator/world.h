@@ -13,7 +13,7 @@
 #include "strahl/geometry/triangle_mesh.h"
 #include "strahl/geometry/user_shape.h"
 #include "strahl/integrator/light.h"
-#include "strahl/integrator/material.h"
+#include "strahl/material/material.h"
 #include "strahl/texture/texture_system.h"
 
 namespace strahl {

@@ -17,7 +17,7 @@
 #include "strahl/geometry/parametric_shape.h"
 #include "strahl/geometry/parametric_tessellation.h"
 #include "strahl/geometry/triangle_mesh.h"
-#include "strahl/integrator/material.h"
+#include "strahl/material/material.h"
 
 namespace strahl {
 
@@ -60,16 +60,9 @@ struct RenderDesc {
     int aoSamples = 1;           // ao
 };
 
-// The texture files of a material, registered with the texture system when
-// the world is built (empty: none).
-struct MaterialTextures {
-    std::filesystem::path color, roughness, metallic, emission, normal;
-};
-
 struct MaterialDesc {
     std::string name;
-    Material material;  // type and parameters; texture handles not yet set
-    MaterialTextures textures;
+    Material material;  // kind and parameters; texture files named, handles not yet bound
     std::string where;
 };
 

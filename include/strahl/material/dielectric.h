@@ -1,0 +1,44 @@
+#pragma once
+// "dielectric": glass, a smooth (roughness 0) or rough (GGX, Walter et al.
+// 2007) dielectric interface (docs/materials.md).
+//
+//   key         value                                           default
+//   color       tint of reflection and transmission              1
+//   ior         index of refraction inside, in [1.0001, 4]       1.5
+//   roughness   perceptual roughness: number or texture          0
+
+#include <array>
+#include <string_view>
+
+#include "strahl/bsdf/bsdf.h"
+#include "strahl/material/kind_parsing.h"
+
+namespace strahl {
+
+struct DielectricMaterial {
+    static constexpr std::string_view kName = "dielectric";
+    static constexpr std::array<std::string_view, 3> kKeys = {"color", "ior", "roughness"};
+
+    TexturedColor tint{Color(1.0f), {}};
+    float ior = 1.5f;
+    TexturedFloat roughness{0.0f, {}, 1};
+
+    template <typename Reader>
+    static DielectricMaterial parse(const Reader& r) {
+        DielectricMaterial m;
+        r.texturedColor("color", m.tint);
+        material_parsing::ior(r, m.ior);
+        material_parsing::roughness(r, m.roughness);
+        return m;
+    }
+    Bsdf bsdf(const MaterialPoint& p) const {
+        return Bsdf::dielectric(ior, p.alpha(roughness), p.reflectance(tint));
+    }
+    template <typename Fn>
+    void forEachTexture(Fn&& fn) {
+        fn(tint.texture, TextureEncoding::Color);
+        fn(roughness.texture, TextureEncoding::Data);
+    }
+};
+
+}  // namespace strahl

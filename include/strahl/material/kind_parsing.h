@@ -1,0 +1,34 @@
+#pragma once
+// Parsing steps several material kinds share. Like the kinds' parse(), they
+// are templates over the scene module's reader (scene/material_parser.cpp
+// instantiates them), so the material headers need no JSON library. The
+// reader offers has(key), find(key) (an optional JSON value with color(),
+// numberIn(lo, hi), string(), fail(...)), texturedColor(key, out),
+// texturedFloat(key, lo, hi, out) and fail(...).
+
+#include "strahl/material/textured.h"
+
+namespace strahl::material_parsing {
+
+// "color", or "diffuse", its older name (diffuse, phong and blinn accept both).
+template <typename Reader>
+void colorOrDiffuse(const Reader& r, TexturedColor& color) {
+    if (r.has("color") && r.has("diffuse")) r.fail("give either 'color' or 'diffuse', not both");
+    r.texturedColor("color", color);
+    r.texturedColor("diffuse", color);
+}
+
+// The index of refraction: below 1.0001 the interface vanishes; above 4 no
+// common material.
+template <typename Reader>
+void ior(const Reader& r, float& ior) {
+    if (auto value = r.find("ior")) ior = value->numberIn(1.0001f, 4.0f);
+}
+
+// Perceptual roughness in [0, 1] (alpha = r^2), constant or textured.
+template <typename Reader>
+void roughness(const Reader& r, TexturedFloat& roughness) {
+    r.texturedFloat("roughness", 0.0f, 1.0f, roughness);
+}
+
+}  // namespace strahl::material_parsing

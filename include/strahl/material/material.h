@@ -1,0 +1,54 @@
+#pragma once
+// Materials: what the scene file and mesh files describe, with textures bound,
+// turned into a BSDF at each shading point (bsdf/bsdf.h has the models).
+// A material is one kind from material_kinds.h (diffuse, phong, blinn,
+// conductor, dielectric, plastic, metallic_roughness, emissive) plus what every
+// kind may have: an emission, a normal map and a texture mapping. Keys,
+// defaults and the mapping from OBJ/glTF materials: docs/materials.md.
+
+#include <string>
+
+#include "strahl/bsdf/bsdf.h"
+#include "strahl/core/math.h"
+#include "strahl/material/material_kinds.h"
+#include "strahl/material/textured.h"
+
+namespace strahl {
+
+struct Material {
+    std::string name;
+    MaterialKind kind;  // a grey (0.8) diffuse unless set
+    TexturedColor emission{Color(0.0f), {}};
+    bool twoSidedEmission = false;  // otherwise only the front (Ng) side emits
+    TextureRef normalMap;
+    TextureMapping mapping;
+
+    // A Lambertian material (what tests and benchmarks mostly need).
+    static Material diffuse(std::string name, const Color& reflectance,
+                            const Color& emitted = Color(0.0f));
+
+    bool emits() const { return maxComponent(emission.value) > 0.0f; }
+    // Emission that does not vary over the surface (no texture): such
+    // triangles become area lights for next-event estimation.
+    bool hasUniformEmission() const { return emits() && !emission.texture.valid(); }
+
+    // Calls fn(TextureRef&, TextureEncoding) for every texture the material
+    // can use, bound or not: the kind's, then the emission's and the normal map.
+    template <typename Fn>
+    void forEachTexture(Fn&& fn) {
+        std::visit([&](auto& k) { k.forEachTexture(fn); }, kind);
+        fn(emission.texture, TextureEncoding::Color);
+        fn(normalMap, TextureEncoding::Data);
+    }
+};
+
+// The BSDF of `material` at sp. `textures` may be null when no texture is bound.
+Bsdf makeBsdf(const Material& material, const ShadingPoint& sp, const TextureSystem* textures);
+// The emitted radiance at sp (before the one-sided test).
+Color emittedRadiance(const Material& material, const ShadingPoint& sp,
+                      const TextureSystem* textures);
+// The shading normal after the material's normal map (sp.n without one).
+Vec3 shadingNormal(const Material& material, const ShadingPoint& sp,
+                   const TextureSystem* textures);
+
+}  // namespace strahl

@@ -1,0 +1,83 @@
+#pragma once
+// The inputs of a material that may vary over the surface: a constant,
+// optionally multiplied by a texture; and MaterialPoint, which evaluates them
+// at one shading point. The material kinds (material_kinds.h) build their BSDF
+// from these.
+
+#include <filesystem>
+
+#include "strahl/core/math.h"
+#include "strahl/texture/texture_system.h"
+
+namespace strahl {
+
+// A texture a material uses: the file the scene names (set when the scene is
+// parsed) and its handle in the texture system (set when the world is built).
+struct TextureRef {
+    std::filesystem::path file;
+    TextureHandle handle;
+
+    bool valid() const { return handle.valid(); }
+};
+
+// A colour, optionally multiplied by a texture's RGB.
+struct TexturedColor {
+    Color value{1.0f};
+    TextureRef texture;
+};
+
+// A scalar, optionally multiplied by one channel of a texture.
+struct TexturedFloat {
+    float value = 0.0f;
+    TextureRef texture;
+    int channel = 0;  // 0 R, 1 G, 2 B, 3 A
+};
+
+// How a texture is placed on the surface.
+struct TextureMapping {
+    enum class Kind { UV, Triplanar };
+    Kind kind = Kind::UV;
+    float scale = 1.0f;      // triplanar: texture repeats per world unit
+    float sharpness = 4.0f;  // triplanar: blend exponent on |n|
+};
+
+// What a material needs to know about the shading point.
+struct ShadingPoint {
+    Vec3 p{0.0f};      // world space (triplanar)
+    Vec3 n{0.0f};      // shading normal (triplanar blend, normal-map frame)
+    Vec3 dpdu{0.0f};   // tangent along u (normal maps, anisotropy); zero if unknown
+    Vec2 uv{0.0f};     // texture coordinates, v up
+    float footprint = 0.0f;  // ray footprint width in uv units (texture filtering)
+};
+
+// Texture lookups of one material at one point. `textures` may be null when
+// the material has no textures.
+Color evaluateColor(const TexturedColor& c, const TextureMapping& mapping,
+                    const ShadingPoint& sp, const TextureSystem* textures);
+float evaluateFloat(const TexturedFloat& f, const TextureMapping& mapping,
+                    const ShadingPoint& sp, const TextureSystem* textures);
+// The encoded normal of a normal map at sp (RGB in [0, 1]).
+Vec3 lookupNormalMap(const TextureRef& normalMap, const TextureMapping& mapping,
+                     const ShadingPoint& sp, const TextureSystem& textures);
+
+// One shading point of one material: what a material kind's bsdf() reads its
+// textured inputs through.
+struct MaterialPoint {
+    const ShadingPoint& sp;
+    const TextureMapping& mapping;
+    const TextureSystem* textures;
+
+    Color color(const TexturedColor& c) const { return evaluateColor(c, mapping, sp, textures); }
+    float scalar(const TexturedFloat& f) const { return evaluateFloat(f, mapping, sp, textures); }
+    // A reflectance for a BSDF factory: texture values may be HDR or corrupt,
+    // and a render must not stop on one texel, so each channel is clamped to
+    // [0, 1] and NaN becomes 0.
+    Color reflectance(const TexturedColor& c) const;
+    // A scalar clamped to [0, 1]; NaN becomes 0.
+    float unit(const TexturedFloat& f) const;
+    // GGX alpha from a perceptual roughness (clamped like unit(); a NaN texel
+    // means smooth).
+    float alpha(const TexturedFloat& roughness) const;
+};
+
+}  // namespace strahl

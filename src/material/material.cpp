@@ -1,0 +1,80 @@
+#include "strahl/material/material.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "strahl/texture/normal_map.h"
+
+namespace strahl {
+
+namespace {
+
+// One texture lookup at sp in the material's mapping. Mesh UVs have v up;
+// OIIO's t runs down the image, hence t = 1 - v.
+Vec4 lookup(TextureHandle texture, const TextureMapping& mapping, const ShadingPoint& sp,
+            const TextureSystem& textures) {
+    if (mapping.kind == TextureMapping::Kind::Triplanar)
+        return textures.triplanar(texture, sp.p, sp.n, mapping.scale, mapping.sharpness,
+                                  sp.footprint * mapping.scale);
+    return textures.lookup(texture, Vec2(sp.uv.x, 1.0f - sp.uv.y), sp.footprint);
+}
+
+}  // namespace
+
+Color evaluateColor(const TexturedColor& c, const TextureMapping& mapping, const ShadingPoint& sp,
+                    const TextureSystem* textures) {
+    if (!c.texture.valid() || !textures) return c.value;
+    return c.value * Color(lookup(c.texture.handle, mapping, sp, *textures));
+}
+
+float evaluateFloat(const TexturedFloat& f, const TextureMapping& mapping, const ShadingPoint& sp,
+                    const TextureSystem* textures) {
+    if (!f.texture.valid() || !textures) return f.value;
+    return f.value * lookup(f.texture.handle, mapping, sp, *textures)[f.channel];
+}
+
+Vec3 lookupNormalMap(const TextureRef& normalMap, const TextureMapping& mapping,
+                     const ShadingPoint& sp, const TextureSystem& textures) {
+    return Vec3(lookup(normalMap.handle, mapping, sp, textures));
+}
+
+Color MaterialPoint::reflectance(const TexturedColor& c) const {
+    const Color value = color(c);
+    Color r;
+    for (int i = 0; i < 3; ++i) r[i] = value[i] > 0.0f ? std::min(value[i], 1.0f) : 0.0f;
+    return r;
+}
+
+float MaterialPoint::unit(const TexturedFloat& f) const {
+    const float x = std::clamp(scalar(f), 0.0f, 1.0f);
+    return std::isnan(x) ? 0.0f : x;  // std::clamp passes NaN through
+}
+
+float MaterialPoint::alpha(const TexturedFloat& roughness) const {
+    return Bsdf::roughnessToAlpha(unit(roughness));
+}
+
+Material Material::diffuse(std::string name, const Color& reflectance, const Color& emitted) {
+    Material m;
+    m.name = std::move(name);
+    m.kind = DiffuseMaterial{TexturedColor{reflectance, {}}};
+    m.emission.value = emitted;
+    return m;
+}
+
+Bsdf makeBsdf(const Material& m, const ShadingPoint& sp, const TextureSystem* textures) {
+    const MaterialPoint point{sp, m.mapping, textures};
+    return std::visit([&](const auto& kind) { return kind.bsdf(point); }, m.kind);
+}
+
+Color emittedRadiance(const Material& m, const ShadingPoint& sp, const TextureSystem* textures) {
+    if (!m.emits()) return Color(0.0f);
+    return evaluateColor(m.emission, m.mapping, sp, textures);
+}
+
+Vec3 shadingNormal(const Material& m, const ShadingPoint& sp, const TextureSystem* textures) {
+    if (!m.normalMap.valid() || !textures) return sp.n;
+    return applyNormalMap(lookupNormalMap(m.normalMap, m.mapping, sp, *textures), sp.n, sp.dpdu);
+}
+
+}  // namespace strahl
