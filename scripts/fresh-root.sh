@@ -150,6 +150,8 @@ cleanup() {
   else
     rm -rf --one-file-system "$work"
   fi
+  # The logs stay only when something failed (their path was printed).
+  ((status != 0)) || rm -rf "$logs"
   echo "fresh-root: total $((SECONDS - total_start)) s"
   exit $status
 }

@@ -510,7 +510,7 @@ int runInfo(const Options& o) {
     // light per emissive triangle, and the background's sky.
     size_t areaLights = 0;
     for (const Light& light : world.lightSet.lights())
-        if (light.type == Light::Type::Triangle) ++areaLights;
+        if (std::holds_alternative<TriangleLight>(light.kind)) ++areaLights;
     const size_t sky = world.lightSet.lights().size() - world.lights.size() - areaLights;
     std::printf("lights     %zu (%zu from the scene file, %zu emissive triangles, %zu background sky)\n",
                 world.lightSet.lights().size(), world.lights.size(), areaLights, sky);

@@ -18,7 +18,7 @@ uint64_t emitterKey(uint32_t instID, uint32_t geomID) {
 }
 
 // Area lights past this count would make the light table itself the memory
-// problem (a Light is about 200 bytes); a scene that needs more should use
+// problem (a Light is 112 bytes: 2^24 of them take 1.75 GiB); a scene that needs more should use
 // textured emission or fewer emissive instances.
 constexpr size_t kMaxAreaLights = size_t(1) << 24;
 
@@ -27,8 +27,7 @@ constexpr size_t kMaxAreaLights = size_t(1) << 24;
 void World::prepareLights() {
     std::vector<Light> all = lights;
     if (maxComponent(background) > 0.0f) {
-        Light sky;
-        sky.type = Light::Type::Sky;
+        SkyLight sky;
         sky.radiance = background;
         all.push_back(sky);
     }
@@ -49,8 +48,7 @@ void World::prepareLights() {
             const uint32_t slot = mesh.faceMaterials.empty() ? 0u : mesh.faceMaterials[t];
             const Material& material = materials[shape.materialOfSlot[slot]];
             if (!material.hasUniformEmission()) continue;
-            Light light;
-            light.type = Light::Type::Triangle;
+            TriangleLight light;
             Vec3 p[3];
             for (int k = 0; k < 3; ++k) {
                 p[k] = mesh.positions[mesh.indices[3 * t + size_t(k)]];

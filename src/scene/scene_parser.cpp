@@ -28,6 +28,7 @@
 #include "strahl/film/image_output.h"
 #include "strahl/integrator/integrator.h"
 #include "strahl/meshio/gltf_camera.h"
+#include "strahl/core/closed_family.h"
 #include "strahl/scene/scene_desc.h"
 
 namespace strahl {
@@ -496,66 +497,35 @@ std::vector<GroupDesc> parseGroups(const JsonValue& groups, const ShapeContext& 
 
 // --- lights --------------------------------------------------------------------
 
-Vec3 nonZeroDirection(const JsonValue& v) {
-    const Vec3 d = v.vec3();
-    if (d == Vec3(0.0f)) v.fail("must be non-zero");
-    return unitVector(d);
-}
+// What a light kind's parse() reads the light object through: the object, the
+// type name it was given (a kind may answer to several) and files resolved
+// against the scene's folder.
+class LightReader {
+public:
+    LightReader(const JsonValue& light, std::string_view name, const fs::path& folder)
+        : light_(light), name_(name), folder_(folder) {}
+
+    const JsonValue& json() const { return light_; }
+    std::string_view name() const { return name_; }
+    fs::path existingFile(const JsonValue& v, std::string_view noun) const {
+        return resolveExistingFile(folder_, v, noun);
+    }
+
+private:
+    const JsonValue& light_;
+    std::string_view name_;
+    const fs::path& folder_;
+};
 
 LightDesc parseLight(const JsonValue& v, const fs::path& folder) {
     LightDesc l;
     l.where = v.pointer();
-    const std::string type =
-        v.get("type").oneOf({"point", "spot", "directional", "sun", "environment", "sky"});
-    if (type == "point") {
-        v.requireKeys({"type", "position", "intensity"});
-        l.type = LightType::Point;
-        l.position = v.get("position").vec3();
-        if (auto intensity = v.find("intensity")) l.intensity = intensity->color();
-    } else if (type == "spot") {
-        v.requireKeys({"type", "position", "direction", "look_at", "intensity", "cone_angle",
-                       "falloff_start"});
-        l.type = LightType::Spot;
-        l.position = v.get("position").vec3();
-        if (v.has("direction") == v.has("look_at"))
-            v.fail("give exactly one of 'direction' and 'look_at'");
-        if (auto direction = v.find("direction")) l.direction = nonZeroDirection(*direction);
-        if (auto target = v.find("look_at")) {
-            const Vec3 d = target->vec3() - l.position;
-            if (d == Vec3(0.0f)) target->fail("must differ from the position");
-            l.direction = unitVector(d);
-        }
-        if (auto intensity = v.find("intensity")) l.intensity = intensity->color();
-        if (auto cone = v.find("cone_angle"))
-            l.coneAngle = cone->numberIn(0.01f, 180.0f, "degrees");
-        l.falloffStart = std::min(l.falloffStart, l.coneAngle);
-        if (auto start = v.find("falloff_start")) {
-            l.falloffStart = start->numberIn(0.0f, 180.0f, "degrees");
-            if (l.falloffStart > l.coneAngle)
-                start->fail("must not exceed cone_angle (", l.coneAngle, " degrees), got ",
-                            l.falloffStart);
-        }
-    } else if (type == "directional" || type == "sun") {
-        v.requireKeys({"type", "direction", "irradiance", "angular_diameter"});
-        l.type = LightType::Directional;
-        l.direction = nonZeroDirection(v.get("direction"));
-        if (auto irradiance = v.find("irradiance")) l.irradiance = irradiance->color();
-        // The sun seen from the earth is 0.53 degrees across.
-        if (type == "sun") l.angularDiameter = 0.53f;
-        if (auto diameter = v.find("angular_diameter"))
-            l.angularDiameter = diameter->numberIn(0.0f, 90.0f, "degrees");
-    } else if (type == "environment") {
-        v.requireKeys({"type", "file", "scale", "rotation"});
-        l.type = LightType::Environment;
-        l.file = resolveExistingFile(folder, v.get("file"), "image file");
-        if (auto scale = v.find("scale")) l.scale = scale->color();
-        if (auto rotation = v.find("rotation"))
-            l.rotation = rotation->numberIn(-360.0f, 360.0f, "degrees");
-    } else {
-        v.requireKeys({"type", "radiance"});
-        l.type = LightType::Sky;
-        if (auto radiance = v.find("radiance")) l.radiance = radiance->color();
-    }
+    static constexpr auto kTypes = kindNames<LightKind>();
+    const std::string type = v.get("type").oneOf(kTypes);
+    const LightReader reader(v, type, folder);
+    l.light = *withKindNamed<LightKind>(type, [&](auto kind) -> LightKind {
+        return decltype(kind)::type::parse(reader);
+    });
     return l;
 }
 

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <memory>
+#include <string_view>
 #include <vector>
 
 #include "strahl/core/error.h"
@@ -60,18 +61,25 @@ double lambertIrradiance(const Vec3& p, const Vec3& n, const std::vector<Vec3>& 
     return 0.5 * L * std::abs(glm::dot(sum, glm::dvec3(n)));
 }
 
-Light pointLight(const Vec3& position, float I) {
-    Light l;
-    l.type = Light::Type::Point;
+PointLight pointLight(const Vec3& position, float I) {
+    PointLight l;
     l.position = position;
     l.intensity = Color(I);
     return l;
 }
 
-Light triangleLight(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Color& L,
-                    bool twoSided = false) {
-    Light l;
-    l.type = Light::Type::Triangle;
+SpotLight spotLight(const Vec3& position, float I, float cosFalloffStart, float cosTotalWidth) {
+    SpotLight l;
+    l.position = position;
+    l.intensity = Color(I);
+    l.cosFalloffStart = cosFalloffStart;
+    l.cosTotalWidth = cosTotalWidth;
+    return l;
+}
+
+TriangleLight triangleLight(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Color& L,
+                            bool twoSided = false) {
+    TriangleLight l;
     l.p0 = p0;
     l.p1 = p1;
     l.p2 = p2;
@@ -80,26 +88,23 @@ Light triangleLight(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Color&
     return l;
 }
 
-Light sunLight(const Vec3& direction, float E, float angularRadius) {
-    Light l;
-    l.type = Light::Type::Directional;
+DirectionalLight sunLight(const Vec3& direction, float E, float angularRadius) {
+    DirectionalLight l;
     l.direction = glm::normalize(direction);
     l.irradiance = Color(E);
     l.angularRadius = angularRadius;
     return l;
 }
 
-Light skyLight(const Color& L) {
-    Light l;
-    l.type = Light::Type::Sky;
+SkyLight skyLight(const Color& L) {
+    SkyLight l;
     l.radiance = L;
     return l;
 }
 
-Light environmentLight(std::shared_ptr<const EnvironmentMap> map, const Mat3& worldToMap,
-                       const Color& scale) {
-    Light l;
-    l.type = Light::Type::Environment;
+EnvironmentLight environmentLight(std::shared_ptr<const EnvironmentMap> map,
+                                  const Mat3& worldToMap, const Color& scale) {
+    EnvironmentLight l;
     l.environment = std::move(map);
     l.worldToEnvironment = worldToMap;
     l.scale = scale;
@@ -113,8 +118,30 @@ Bounds3 unitBox() {
     return b;
 }
 
+TEST(LightKinds, SceneFileNamesFollowTheVariantOrder) {
+    const auto names = kindNames<LightKind>();
+    const std::vector<std::string_view> expected = {"point",       "spot", "directional", "sun",
+                                                    "environment", "sky"};
+    EXPECT_EQ(std::vector<std::string_view>(names.begin(), names.end()), expected);
+    // "sun" is a directional light; triangles are made by the renderer, not named.
+    const auto sunIsDirectional = withKindNamed<LightKind>(
+        "sun", [](auto k) { return std::is_same_v<typename decltype(k)::type, DirectionalLight>; });
+    ASSERT_TRUE(sunIsDirectional.has_value());
+    EXPECT_TRUE(*sunIsDirectional);
+    EXPECT_FALSE(withKindNamed<LightKind>("triangle", [](auto) { return 0; }));
+    EXPECT_EQ(kindName(Light(triangleLight(Vec3(0), Vec3(1, 0, 0), Vec3(0, 1, 0), Color(1))).kind),
+              "triangle");
+}
+
+TEST(LightKinds, ALightIsAsSmallAsItsLargestKind) {
+    // World::prepareLights makes one Light per emissive triangle: the variant
+    // keeps that table smaller than the old struct with every kind's fields
+    // (~190 bytes): the largest kind is the environment light.
+    EXPECT_LE(sizeof(Light), 128u);
+}
+
 TEST(PointLight, InverseSquareIrradiance) {
-    const Light light = pointLight(Vec3(1, 3, 0), 12.0f);
+    const PointLight light = pointLight(Vec3(1, 3, 0), 12.0f);
     EXPECT_TRUE(light.isDelta());
     EXPECT_FALSE(light.isInfinite());
     const LightSampleContext ctx{Vec3(1, 1, 0), Vec3(0, 1, 0)};
@@ -134,11 +161,8 @@ TEST(PointLight, InverseSquareIrradiance) {
 }
 
 TEST(SpotLight, SmoothstepFalloffBetweenTheCones) {
-    Light light = pointLight(Vec3(0, 0, 0), 8.0f);
-    light.type = Light::Type::Spot;
+    SpotLight light = spotLight(Vec3(0, 0, 0), 8.0f, std::cos(0.3f), std::cos(0.5f));
     light.direction = Vec3(0, -1, 0);
-    light.cosFalloffStart = std::cos(0.3f);
-    light.cosTotalWidth = std::cos(0.5f);
     EXPECT_TRUE(light.isDelta());
     // Receivers on the unit sphere around the light at angle a from the axis.
     auto falloffAt = [&](float cosA) -> float {
@@ -160,10 +184,7 @@ TEST(SpotLight, SmoothstepFalloffBetweenTheCones) {
 }
 
 TEST(SpotLight, PowerIsTheIntegralOfTheFalloff) {
-    Light light = pointLight(Vec3(0, 0, 0), 3.0f);
-    light.type = Light::Type::Spot;
-    light.cosFalloffStart = 0.9f;
-    light.cosTotalWidth = 0.6f;
+    const SpotLight light = spotLight(Vec3(0, 0, 0), 3.0f, 0.9f, 0.6f);
     // Phi = I 2 pi integral of falloff(cos) dcos, by the midpoint rule.
     double integral = 0.0;
     const int steps = 20000;
@@ -178,7 +199,7 @@ TEST(SpotLight, PowerIsTheIntegralOfTheFalloff) {
 }
 
 TEST(DirectionalLight, DeltaGivesTheIrradiance) {
-    const Light light = sunLight(Vec3(0, -1, 0), 3.0f, 0.0f);
+    const DirectionalLight light = sunLight(Vec3(0, -1, 0), 3.0f, 0.0f);
     EXPECT_TRUE(light.isDelta());
     EXPECT_TRUE(light.isInfinite());
     const LightSampleContext ctx{Vec3(5, 2, 1), Vec3(0, 1, 0)};
@@ -193,7 +214,7 @@ TEST(DirectionalLight, DeltaGivesTheIrradiance) {
 
 TEST(DirectionalLight, SunDiskRadianceAndIrradiance) {
     const float r = 0.3f;  // wide, so the estimate tests the cone geometry
-    const Light light = sunLight(Vec3(0, -1, 0), 2.0f, r);
+    const DirectionalLight light = sunLight(Vec3(0, -1, 0), 2.0f, r);
     EXPECT_FALSE(light.isDelta());
     EXPECT_TRUE(light.isInfinite());
     const float L = 2.0f / (kPi * std::sin(r) * std::sin(r));
@@ -212,7 +233,7 @@ TEST(DirectionalLight, SunDiskRadianceAndIrradiance) {
 
 TEST(DirectionalLight, RealSunSizeKeepsFullPrecision) {
     // The sun's 0.2666 degrees: 1 - cos r = 1.08e-5, near float's resolution at 1.
-    const Light light = sunLight(Vec3(1, -2, 0.5f), 1000.0f, 0.004653f);
+    const DirectionalLight light = sunLight(Vec3(1, -2, 0.5f), 1000.0f, 0.004653f);
     const LightSampleContext ctx{Vec3(0), -light.direction};
     EXPECT_NEAR(estimateIrradiance(light, ctx, 4000, 8), 1000.0, 0.05);
 }
@@ -220,7 +241,7 @@ TEST(DirectionalLight, RealSunSizeKeepsFullPrecision) {
 TEST(TriangleLight, SolidAngleSamplingMatchesLambertsFormula) {
     // Close and large: sampled by solid angle.
     const Vec3 p0(-1, 1, -1), p1(1, 1, -1), p2(0, 1, 1.5f);  // front faces -y
-    const Light light = triangleLight(p0, p1, p2, Color(2.0f, 1.0f, 0.5f));
+    const TriangleLight light = triangleLight(p0, p1, p2, Color(2.0f, 1.0f, 0.5f));
     EXPECT_FALSE(light.isDelta());
     EXPECT_FALSE(light.isInfinite());
     const LightSampleContext up{Vec3(0.1f, 0, 0.2f), Vec3(0, 1, 0)};
@@ -243,7 +264,7 @@ TEST(TriangleLight, SolidAngleSamplingMatchesLambertsFormula) {
 TEST(TriangleLight, AreaSamplingOfATinyTriangleMatchesLambertsFormula) {
     // 3e-5 sr: below the solid-angle threshold, so sampled by area.
     const Vec3 p0(-0.005f, 1, -0.005f), p1(0.005f, 1, -0.005f), p2(0, 1.003f, 0.006f);
-    const Light light = triangleLight(p0, p1, p2, Color(1000.0f), true);
+    const TriangleLight light = triangleLight(p0, p1, p2, Color(1000.0f), true);
     const LightSampleContext ctx{Vec3(0.2f, 0, 0.1f), glm::normalize(Vec3(0.2f, 1, 0))};
     const float omega = triangleSolidAngle(ctx.p, p0, p1, p2);
     ASSERT_LT(omega, 3e-4f);
@@ -270,7 +291,7 @@ TEST(TriangleLight, AreaSamplingOfATinyTriangleMatchesLambertsFormula) {
 
 TEST(TriangleLight, NearlyAHemisphereFallsBackToAreaSamplingConsistently) {
     const Vec3 p0(-100, 0, -100), p1(0, 0, 200), p2(100, 0, -100);  // front faces +y
-    const Light light = triangleLight(p0, p1, p2, Color(1.0f));
+    const TriangleLight light = triangleLight(p0, p1, p2, Color(1.0f));
     const LightSampleContext ctx{Vec3(0.5f, 0.01f, 0.3f), Vec3(0, -1, 0)};
     ASSERT_GT(triangleSolidAngle(ctx.p, p0, p1, p2), 6.22f);
     Pcg32 rng(2, 9);
@@ -284,7 +305,7 @@ TEST(TriangleLight, NearlyAHemisphereFallsBackToAreaSamplingConsistently) {
 
 TEST(TriangleLight, OneSidedEmitsOnlyFromTheFront) {
     const Vec3 p0(0, 0, 0), p1(1, 0, 0), p2(0, 0, -1);  // front faces +y
-    Light light = triangleLight(p0, p1, p2, Color(1.0f));
+    TriangleLight light = triangleLight(p0, p1, p2, Color(1.0f));
     EXPECT_EQ(triangleLe(light, Vec3(0, 1, 0)), Color(1.0f));
     EXPECT_EQ(triangleLe(light, Vec3(0, -1, 0)), Color(0.0f));
     const LightSampleContext above{Vec3(0.2f, 1, -0.2f), Vec3(0, -1, 0)};
@@ -300,7 +321,7 @@ TEST(TriangleLight, OneSidedEmitsOnlyFromTheFront) {
 }
 
 TEST(SkyLight, CosineSamplingGivesPiLExactly) {
-    const Light light = skyLight(Color(0.7f));
+    const SkyLight light = skyLight(Color(0.7f));
     EXPECT_TRUE(light.isInfinite());
     EXPECT_FALSE(light.isDelta());
     // Cosine-weighted around n: every sample contributes L cos / (cos / pi) = pi L.
@@ -311,7 +332,7 @@ TEST(SkyLight, CosineSamplingGivesPiLExactly) {
 }
 
 TEST(SkyLight, UniformSphereOffSurfaces) {
-    const Light light = skyLight(Color(0.7f));
+    const SkyLight light = skyLight(Color(0.7f));
     const LightSampleContext ctx{Vec3(0), Vec3(0)};  // no normal: a medium point
     EXPECT_NEAR(pdfLi(light, ctx, Vec3(0, 0, 1), Vec3(0)), 0.25f * kInvPi, 1e-7f);
     Pcg32 rng(1, 1);
@@ -329,7 +350,7 @@ TEST(SkyLight, UniformSphereOffSurfaces) {
 TEST(EnvironmentLight, ConstantMapEqualsTheSky) {
     auto map = std::make_shared<const EnvironmentMap>(16, 8, std::vector<Color>(128, Color(0.5f)));
     const Mat3 rotation = Mat3(glm::rotate(Mat4(1.0f), 0.8f, glm::normalize(Vec3(1, 2, 3))));
-    const Light light = environmentLight(map, rotation, Color(1.4f));
+    const EnvironmentLight light = environmentLight(map, rotation, Color(1.4f));
     EXPECT_TRUE(light.isInfinite());
     EXPECT_FALSE(light.isDelta());
     const LightSampleContext ctx{Vec3(0), Vec3(0, 1, 0)};
@@ -345,7 +366,7 @@ TEST(EnvironmentLight, RotationAndScaleApplyToLookupAndSampling) {
         texels.emplace_back(texelRng.nextFloat(), texelRng.nextFloat(), texelRng.nextFloat());
     auto map = std::make_shared<const EnvironmentMap>(32, 16, texels);
     const Mat3 rotation = Mat3(glm::rotate(Mat4(1.0f), 1.1f, glm::normalize(Vec3(-1, 3, 1))));
-    const Light light = environmentLight(map, rotation, Color(2.0f, 1.0f, 0.5f));
+    const EnvironmentLight light = environmentLight(map, rotation, Color(2.0f, 1.0f, 0.5f));
     const Vec3 dir = glm::normalize(Vec3(0.3f, -0.5f, 0.8f));
     const Color expected = Color(2.0f, 1.0f, 0.5f) * map->lookup(rotation * dir);
     const Color seen = infiniteLe(light, dir);
@@ -359,9 +380,9 @@ TEST(LightPower, MatchesTheEmittedFlux) {
     const Bounds3 box = unitBox();  // radius sqrt(3)
     const float R2 = 3.0f;
     EXPECT_FLOAT_EQ(lightPower(pointLight(Vec3(0), 2.0f), box), 8.0f * kPi);
-    const Light tri = triangleLight(Vec3(0), Vec3(2, 0, 0), Vec3(0, 0, 3), Color(1, 2, 3));
+    const TriangleLight tri = triangleLight(Vec3(0), Vec3(2, 0, 0), Vec3(0, 0, 3), Color(1, 2, 3));
     EXPECT_FLOAT_EQ(lightPower(tri, box), kPi * 3.0f * 2.0f);
-    Light twoSided = tri;
+    TriangleLight twoSided = tri;
     twoSided.twoSided = true;
     EXPECT_FLOAT_EQ(lightPower(twoSided, box), 2.0f * kPi * 3.0f * 2.0f);
     EXPECT_FLOAT_EQ(lightPower(sunLight(Vec3(0, -1, 0), 2.0f, 0.0f), box), kPi * R2 * 2.0f);
@@ -411,13 +432,10 @@ TEST(LightSet, AllZeroPowersFallBackToUniformAndEmptyChoosesNothing) {
 }
 
 TEST(LightSet, RejectsLightsTheSamplersCannotHandle) {
-    Light spot = pointLight(Vec3(0), 1.0f);
-    spot.type = Light::Type::Spot;
-    spot.cosFalloffStart = 0.5f;
-    spot.cosTotalWidth = 0.9f;  // out of order
+    const SpotLight spot = spotLight(Vec3(0), 1.0f, 0.5f, 0.9f);  // cosines out of order
     EXPECT_THROW(LightSet({spot}, unitBox()), Error);
     EXPECT_THROW(LightSet({sunLight(Vec3(0, -1, 0), 1.0f, 2.0f)}, unitBox()), Error);
-    Light sun = sunLight(Vec3(0, -1, 0), 1.0f, 0.0f);
+    DirectionalLight sun = sunLight(Vec3(0, -1, 0), 1.0f, 0.0f);
     sun.direction = Vec3(0, -2, 0);
     EXPECT_THROW(LightSet({sun}, unitBox()), Error);
     EXPECT_THROW(LightSet({skyLight(Color(-1.0f))}, unitBox()), Error);

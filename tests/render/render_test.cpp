@@ -36,17 +36,15 @@ World floorWorld(float rho, bool occluder) {
     return world;
 }
 
-Light pointLight(const Vec3& position, const Color& intensity) {
-    Light light;
-    light.type = Light::Type::Point;
+PointLight pointLight(const Vec3& position, const Color& intensity) {
+    PointLight light;
     light.position = position;
     light.intensity = intensity;
     return light;
 }
 
-Light directionalLight(const Vec3& direction, const Color& irradiance) {
-    Light light;
-    light.type = Light::Type::Directional;
+DirectionalLight directionalLight(const Vec3& direction, const Color& irradiance) {
+    DirectionalLight light;
     light.direction = direction;
     light.irradiance = irradiance;
     return light;

@@ -220,15 +220,16 @@ TEST(SceneParser, Lights) {
                       {"type": "directional", "direction": [0, -3, 4], "irradiance": 2},
                       {"type": "point", "position": [1, 2, 3]}])");
     ASSERT_EQ(s.lights.size(), 3u);
-    EXPECT_EQ(s.lights[0].type, LightType::Point);
-    EXPECT_EQ(s.lights[0].position, Vec3(0.0f, 4.0f, 0.0f));
-    EXPECT_EQ(s.lights[0].intensity, Color(10.0f, 20.0f, 30.0f));
+    const auto& point = std::get<PointLight>(s.lights[0].light.kind);
+    EXPECT_EQ(point.position, Vec3(0.0f, 4.0f, 0.0f));
+    EXPECT_EQ(point.intensity, Color(10.0f, 20.0f, 30.0f));
     EXPECT_EQ(s.lights[0].where, "/lights/0");
-    EXPECT_EQ(s.lights[1].type, LightType::Directional);
-    expectNear(s.lights[1].direction, Vec3(0.0f, -0.6f, 0.8f));  // normalised
-    EXPECT_EQ(s.lights[1].irradiance, Color(2.0f));
+    const auto& directional = std::get<DirectionalLight>(s.lights[1].light.kind);
+    expectNear(directional.direction, Vec3(0.0f, -0.6f, 0.8f));  // normalised
+    EXPECT_EQ(directional.irradiance, Color(2.0f));
+    EXPECT_EQ(directional.angularRadius, 0.0f);
     EXPECT_EQ(s.lights[1].where, "/lights/1");
-    EXPECT_EQ(s.lights[2].intensity, Color(1.0f));  // default
+    EXPECT_EQ(std::get<PointLight>(s.lights[2].light.kind).intensity, Color(1.0f));  // default
 }
 
 TEST(SceneParser, DirectionsOfExtremeMagnitude) {
@@ -238,8 +239,8 @@ TEST(SceneParser, DirectionsOfExtremeMagnitude) {
            "lights": [{"type": "directional", "direction": [0, 0, -1e30]},
                       {"type": "directional", "direction": [3e-30, 4e-30, 0]}])");
     EXPECT_EQ(*s.camera.back, Vec3(1e-30f, 0.0f, 0.0f));
-    EXPECT_EQ(s.lights[0].direction, Vec3(0.0f, 0.0f, -1.0f));
-    expectNear(s.lights[1].direction, Vec3(0.6f, 0.8f, 0.0f));
+    EXPECT_EQ(std::get<DirectionalLight>(s.lights[0].light.kind).direction, Vec3(0.0f, 0.0f, -1.0f));
+    expectNear(std::get<DirectionalLight>(s.lights[1].light.kind).direction, Vec3(0.6f, 0.8f, 0.0f));
 }
 
 TEST(SceneParser, DuplicateKeysKeepTheLastValue) {

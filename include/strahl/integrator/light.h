@@ -1,73 +1,53 @@
 #pragma once
-// Lights and how the path tracer samples them (next-event estimation).
+// Lights and how the path tracer samples them (next-event estimation). A light
+// is one kind of a closed family, one header per kind with its parameters,
+// scene-file keys, validation, sampling, density and power:
 //
-//   point        radiant intensity I (W/sr) from a point
-//   spot         a point light inside a cone, smoothstep falloff in cos(angle)
-//                from 1 inside cosFalloffStart to 0 outside cosTotalWidth
-//   directional  irradiance E from a direction; with an angular radius r > 0 it
-//                is a sun disk of uniform radiance E / (pi sin^2 r), sampled
-//                uniformly in its cone
-//   triangle     one emissive triangle of an area light (emissive meshes are
-//                split into these), world space, sampled uniformly in solid
-//                angle (spherical triangle, Arvo 1995) when it subtends between
-//                3e-4 sr and 6.22 sr, else uniformly by area
-//   environment  a lat-long radiance map at infinity, importance-sampled by a
-//                piecewise-constant 2D distribution weighted by sin(theta)
-//   sky          constant radiance from every direction, sampled cosine-weighted
-//                around the surface normal (uniformly for a point off surfaces)
+//   point        point_light.h        radiant intensity from a point
+//   spot         spot_light.h         a point light inside a cone
+//   directional  directional_light.h  irradiance from a direction, or a sun disk ("sun")
+//   environment  environment_light.h  a lat-long radiance map at infinity
+//   sky          sky_light.h          constant radiance from every direction
+//   triangle     triangle_light.h     one emissive triangle of an area light
+//                                     (made from emissive meshes, not in scene files)
 //
-// docs/lights.md derives every density and states units. Lat-long convention
-// (environment_map.h): +y up, the image centre towards +x, its left edge towards
-// -x, u = 1/4 towards -z; not mirrored when seen from inside.
+// LightKind lists them; the functions below visit it. docs/lights.md derives
+// every density and states units; docs/architecture.md says how to add a kind.
 
 #include <cstdint>
-#include <memory>
 #include <optional>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "strahl/core/bounds.h"
+#include "strahl/core/closed_family.h"
 #include "strahl/core/distribution.h"
-#include "strahl/core/math.h"
-#include "strahl/integrator/environment_map.h"
+#include "strahl/integrator/directional_light.h"
+#include "strahl/integrator/environment_light.h"
+#include "strahl/integrator/light_sample.h"
+#include "strahl/integrator/point_light.h"
+#include "strahl/integrator/sky_light.h"
+#include "strahl/integrator/spot_light.h"
+#include "strahl/integrator/triangle_light.h"
 
 namespace strahl {
 
+// The closed set of light kinds; the order is the order `type` errors list the
+// scene-file names in.
+using LightKind = std::variant<PointLight, SpotLight, DirectionalLight, EnvironmentLight,
+                               SkyLight, TriangleLight>;
+
 struct Light {
-    enum class Type { Point, Spot, Directional, Triangle, Environment, Sky };
-    Type type = Type::Point;
-    Vec3 position{0.0f};                // point, spot
-    Vec3 direction{0.0f, -1.0f, 0.0f};  // spot axis / directional travel direction (unit)
-    Color intensity{1.0f};              // point, spot: W/sr per channel
-    Color irradiance{1.0f};             // directional: W/m^2 on a facing surface
-    float cosFalloffStart = 1.0f;       // spot: full intensity inside this cone
-    float cosTotalWidth = 0.0f;         // spot: zero outside this cone
-    float angularRadius = 0.0f;         // directional: sun disk half-angle, radians (0: delta)
-    Vec3 p0{0.0f}, p1{0.0f}, p2{0.0f};  // triangle, world space; front = counter-clockwise
-    Color radiance{0.0f};               // triangle: emitted radiance; sky: radiance
-    bool twoSided = false;              // triangle: emits from both faces
-    std::shared_ptr<const EnvironmentMap> environment;  // environment
-    Mat3 worldToEnvironment{1.0f};  // environment: rotation (orthonormal) into map space
-    Color scale{1.0f};              // environment: multiplies the map
+    LightKind kind;  // a point light of intensity 1 at the origin unless set
+
+    Light() = default;
+    template <typename Kind>
+        requires std::is_constructible_v<LightKind, Kind>
+    Light(Kind k) : kind(std::move(k)) {}  // NOLINT: a kind is a light
 
     bool isDelta() const;     // point, spot, delta directional
     bool isInfinite() const;  // directional, environment, sky
-};
-
-// Where the light is sampled from: a surface point with its geometric normal
-// (zero for a point not on a surface). Only the sky uses n: it samples the
-// hemisphere n points into, so n should face the side being shaded.
-struct LightSampleContext {
-    Vec3 p{0.0f};
-    Vec3 n{0.0f};
-};
-
-struct LightLiSample {
-    Color L{0.0f};      // incident radiance (delta lights: the irradiance I/r^2 or E)
-    Vec3 wi{0.0f};      // unit direction towards the light
-    float pdf = 0.0f;   // solid angle density (delta lights: 1)
-    Vec3 pLight{0.0f};  // the sampled point (finite lights), for the shadow ray; unused at infinity
-    bool atInfinity = false;
 };
 
 // Samples incident light at ctx from `light`; nullopt if the light contributes
@@ -81,7 +61,8 @@ float pdfLi(const Light& light, const LightSampleContext& ctx, const Vec3& wi, c
 // Radiance an escaping ray in direction dir receives from an infinite light
 // (environment, sky, sun disk); 0 for the others.
 Color infiniteLe(const Light& light, const Vec3& dir);
-// Radiance leaving a triangle light at a point towards w (0 behind a one-sided one).
+// Radiance leaving a triangle light at a point towards w (0 behind a one-sided
+// one, and for every other kind).
 Color triangleLe(const Light& light, const Vec3& w);
 // Total emitted power estimate (W, average of RGB) for power-proportional light
 // selection: point 4 pi I, spot 2 pi I (1 - (cosStart + cosWidth) / 2), triangle

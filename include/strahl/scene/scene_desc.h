@@ -17,6 +17,7 @@
 #include "strahl/geometry/parametric_shape.h"
 #include "strahl/geometry/parametric_tessellation.h"
 #include "strahl/geometry/triangle_mesh.h"
+#include "strahl/integrator/light.h"
 #include "strahl/material/material.h"
 
 namespace strahl {
@@ -120,21 +121,10 @@ struct GroupDesc {
 // bounds the recursion of everything that walks them.
 inline constexpr int kMaxGroupNesting = 64;
 
-enum class LightType { Point, Spot, Directional, Environment, Sky };
-
+// A light of the scene file: its kind and parameters (strahl/integrator/light.h);
+// an environment's image is named here and read when the world is built.
 struct LightDesc {
-    LightType type = LightType::Point;
-    Vec3 position{0.0f};                 // point, spot
-    Vec3 direction{0.0f, -1.0f, 0.0f};   // spot axis; directional: the direction light travels
-    Color intensity{1.0f};               // point, spot: radiant intensity, W/sr per channel
-    Color irradiance{1.0f};              // directional: W/m^2 on a surface facing it
-    float coneAngle = 30.0f;             // spot: half-angle of the cone, degrees
-    float falloffStart = 25.0f;          // spot: full intensity inside this half-angle, degrees
-    float angularDiameter = 0.0f;        // directional: sun disk, degrees (0: delta)
-    std::filesystem::path file;          // environment: lat-long image (resolved)
-    Color scale{1.0f};                   // environment: multiplies the image
-    float rotation = 0.0f;               // environment: degrees about +y
-    Color radiance{1.0f};                // sky
+    Light light;
     std::string where;
 };
 
