@@ -9,7 +9,7 @@
 //    referenced by RTC_GEOMETRY_TYPE_INSTANCE geometries (one level: the build
 //    has RTC_MAX_INSTANCE_LEVEL_COUNT == 1).
 //  - Every UserShape goes through one generic user-geometry adapter (the
-//    callbacks below), following the Embree 3 contract of ../shared/GUIDE.md §3:
+//    callbacks below), following Embree 3.13's user-geometry contract:
 //    callbacks handle any packet width N, read valid[] only, accept a hit only
 //    inside (tnear, tfar) — the shape's own intersect() guarantees that — write
 //    tfar/u/v/Ng/primID/geomID and instID on a hit and nothing on a miss, and

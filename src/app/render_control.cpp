@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "strahl/core/error.h"
+#include "strahl/core/hash.h"
 
 namespace strahl::app {
 
@@ -24,17 +25,6 @@ extern "C" void onInterrupt(int signal) {
     gCancel.store(true, std::memory_order_relaxed);
     // A second signal is not caught: it kills the process as usual.
     std::signal(signal, SIG_DFL);
-}
-
-// FNV-1a, 64 bit: enough to tell one scene file from another, not a
-// security measure.
-uint64_t fnv1a(const std::string& bytes) {
-    uint64_t h = 0xcbf29ce484222325ULL;
-    for (unsigned char c : bytes) {
-        h ^= c;
-        h *= 0x100000001b3ULL;
-    }
-    return h;
 }
 
 }  // namespace

@@ -28,6 +28,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "strahl/core/hash.h"
 #include "strahl/meshio/gltf_camera.h"
 #include "strahl/meshio/mesh_file.h"
 #include "text_scan.h"
@@ -196,16 +197,6 @@ std::string percentDecode(std::string_view uri) {
         out += uri[i];
     }
     return out;
-}
-
-// 64-bit FNV-1a: names the cache folder and the extracted images.
-uint64_t fnv1a(const void* data, size_t size, uint64_t hash = 14695981039346656037ull) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < size; ++i) {
-        hash ^= p[i];
-        hash *= 1099511628211ull;  // the 64-bit FNV prime
-    }
-    return hash;
 }
 
 std::string hex64(uint64_t value) {

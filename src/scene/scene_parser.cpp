@@ -1,7 +1,10 @@
 // Scene file (JSON with comments) to SceneDesc. The format is documented key by
 // key in docs/scene-format.md; this file checks every value it reads and names
-// the JSON pointer of anything it rejects. Nothing is loaded here except the
-// text itself: mesh files are only checked to exist.
+// the JSON pointer of anything it rejects. Mesh, texture and environment files
+// are only checked to exist; three kinds of file are read here, because their
+// content is part of the description and their errors must name its place: a
+// glTF file's cameras (a camera chosen from it), Bézier patch files (.bpt) and
+// height images of parametric shapes (whose surfaces are built at parse time).
 
 #include <algorithm>
 #include <array>

@@ -1,5 +1,7 @@
 #pragma once
-// SceneDesc: the scene file as plain data, before anything is loaded or built.
+// SceneDesc: the scene file as plain data, before meshes, textures and images
+// are loaded and the world is built (parametric surfaces and glTF cameras are
+// read while parsing: src/scene/scene_parser.cpp says why).
 // Every element remembers where it came from (a JSON pointer such as
 // "/shapes/2") so that later stages can name the place in their errors.
 // The file format is documented key by key in docs/scene-format.md.
