@@ -1,6 +1,7 @@
 #include "commands.h"
 
 #include <algorithm>
+#include <sstream>
 #include <cctype>
 #include <chrono>
 #include <cstdio>
@@ -25,32 +26,60 @@
 #include "strahl/render/renderer.h"
 #include "strahl/scene/scene_builder.h"
 #include "strahl/scene/scene_desc.h"
+#include "strahl/scene/scene_document.h"
 
 namespace strahl::app {
 
 namespace {
 
-// Applies the command-line overrides to the scene description.
-void applyOverrides(const Options& o, SceneDesc& desc) {
-    if (o.width) desc.film.width = *o.width;
-    if (o.height) desc.film.height = *o.height;
-    if (o.spp) desc.render.spp = *o.spp;
-    if (o.integrator) desc.render.integrator = *o.integrator;
-    if (o.maxDepth) desc.render.maxDepth = *o.maxDepth;
-    if (o.seed) desc.render.seed = *o.seed;
-    if (o.exrFloat) desc.film.exrFloat = true;
+// The command-line flags that change scene settings, as patches of the scene
+// document (scene_document.h), then --set in the order given; a later patch
+// wins. A flag for another scene key is one more line here. -o is not a patch:
+// its files are relative to the current folder, not the scene's, and where an
+// image is written is not part of what it is (applyOutputs).
+std::vector<ScenePatch> scenePatches(const Options& o) {
+    std::vector<ScenePatch> patches;
+    const auto add = [&](const char* pointer, const nlohmann::json& value, std::string origin) {
+        patches.push_back({pointer, value.dump(), std::move(origin)});
+    };
+    const auto flag = [](const char* name, const auto& value) {
+        std::ostringstream text;
+        text << name << " " << value;
+        return text.str();
+    };
+    if (o.width) add("/film/width", *o.width, flag("--width", *o.width));
+    if (o.height) add("/film/height", *o.height, flag("--height", *o.height));
+    if (o.spp) add("/render/spp", *o.spp, flag("--spp", *o.spp));
+    if (o.integrator) add("/render/integrator", *o.integrator, flag("--integrator", *o.integrator));
+    if (o.maxDepth) add("/render/max_depth", *o.maxDepth, flag("--max-depth", *o.maxDepth));
+    if (o.seed) add("/render/seed", *o.seed, flag("--seed", *o.seed));
+    if (o.exrFloat) add("/film/exr_float", true, "--exr-float");
     if (!o.aovs.empty()) {
-        desc.film.aovs.clear();
+        std::vector<std::string> aovs;  // each once, in the order first given
+        std::string origin;
         for (const std::string& a : o.aovs) {
-            const AovKind kind = *aovFromName(a);  // the CLI admits only aovNames()
-            if (std::find(desc.film.aovs.begin(), desc.film.aovs.end(), kind) == desc.film.aovs.end())
-                desc.film.aovs.push_back(kind);
+            if (std::find(aovs.begin(), aovs.end(), a) == aovs.end()) aovs.push_back(a);
+            origin += (origin.empty() ? "--aov " : " --aov ") + a;
         }
+        add("/film/aovs", aovs, origin);
     }
-    if (!o.outputs.empty()) {
-        desc.film.outputs.clear();
-        for (const std::string& out : o.outputs) desc.film.outputs.emplace_back(out);  // relative to cwd
-    }
+    for (const std::string& argument : o.sets) patches.push_back(parseSetArgument(argument));
+    return patches;
+}
+
+// The scene file as a document with the command line's patches applied.
+SceneDocument patchedScene(const Options& o) {
+    SceneDocument document = SceneDocument::read(o.scene);
+    for (const ScenePatch& patch : scenePatches(o)) document.apply(patch);
+    return document;
+}
+
+// -o replaces the scene's film.outputs (its names are relative to the
+// current folder).
+void applyOutputs(const Options& o, SceneDesc& desc) {
+    if (o.outputs.empty()) return;
+    desc.film.outputs.clear();
+    for (const std::string& out : o.outputs) desc.film.outputs.emplace_back(out);
 }
 
 PixelRect cropWindow(const Options& o, const SceneDesc& desc) {
@@ -196,9 +225,9 @@ void checkBeforeLoading(const Options& o, const SceneDesc& desc, bool worker, bo
 
 // The metadata every output carries (docs/output.md): the settings, the
 // fingerprint, and for ray tracing whether the image is partial.
-ImageMetadata imageMetadata(const Options& o, const SceneDesc& desc, const Camera& camera,
-                            const RenderStats& stats, bool raster,
-                            const std::string& sceneFingerprint) {
+ImageMetadata imageMetadata(const Options& o, const SceneDocument& document,
+                            const SceneDesc& desc, const Camera& camera, const RenderStats& stats,
+                            bool raster, const std::string& sceneFingerprint) {
     ImageMetadata metadata;
     metadata.renderSeconds = stats.seconds;
     metadata.spp = desc.render.spp;
@@ -225,7 +254,7 @@ ImageMetadata imageMetadata(const Options& o, const SceneDesc& desc, const Camer
     if (o.sampleOffset) {
         const auto begin = static_cast<uint32_t>(*o.sampleOffset);
         metadata.part = SamplePart{{{begin, begin + static_cast<uint32_t>(desc.render.spp)}},
-                                   splitFingerprint(o, desc)};
+                                   splitFingerprint(o, document)};
     }
     return metadata;
 }
@@ -269,13 +298,11 @@ void printSummary(const SceneDesc& desc, const World& world, const BuildTimings&
 int renderScene(const Options& given, ProgressReporter& progress) {
     const auto started = std::chrono::steady_clock::now();
     const Options o = withFrameNames(given);
-    SceneDesc desc = parseSceneFile(o.scene);
-    applyOverrides(o, desc);
+    const SceneDocument document = patchedScene(o);
+    SceneDesc desc = document.parse();
+    applyOutputs(o, desc);
     for (auto& out : desc.film.outputs)
         out = expandFramePattern(out, o.frame.value_or(-1), o.scene + ": film.outputs:");
-    if (static_cast<long long>(desc.film.width) * desc.film.height > kMaxFilmPixels)
-        fail("image of ", desc.film.width, "x", desc.film.height, " pixels is larger than the limit of ",
-             kMaxFilmPixels, " pixels");
     if (desc.film.outputs.empty())
         fail(o.scene, ": no output image: give -o FILE or film.outputs in the scene");
     // Distributed workers write nothing: only rank 0 checks the outputs.
@@ -287,7 +314,7 @@ int renderScene(const Options& given, ProgressReporter& progress) {
     // The sample offset decides the pixels too: regions of different sample
     // ranges must not be assembled, nor one skipped for the other.
     const std::string sceneFingerprint =
-        imageFingerprint(desc) +
+        imageFingerprint(document) +
         (o.sampleOffset ? ", samples from " + std::to_string(*o.sampleOffset) : std::string());
     // Before anything heavy is loaded: only the scene file has been read.
     if (o.skipExisting && !worker && outputsComplete(o, desc, crop, sceneFingerprint, progress))
@@ -339,7 +366,7 @@ int renderScene(const Options& given, ProgressReporter& progress) {
         progress.passDone(1);
         stats.seconds = rasterStats.seconds;
     } else {
-        const std::string fingerprint = renderFingerprint(o, desc, crop);
+        const std::string fingerprint = renderFingerprint(o, document, crop);
         if (o.resume) {
             readCheckpoint(film, *o.resume, fingerprint);
             if (!o.quiet)
@@ -398,7 +425,7 @@ int renderScene(const Options& given, ProgressReporter& progress) {
     output.exrFloat = desc.film.exrFloat;
     output.color = o.color;
     const ImageMetadata metadata =
-        imageMetadata(o, desc, camera, stats, raster, sceneFingerprint);
+        imageMetadata(o, document, desc, camera, stats, raster, sceneFingerprint);
     for (const auto& out : desc.film.outputs) {
         writeImage(film, out, output, metadata);
         if (!o.quiet) std::fprintf(stderr, "wrote %s\n", out.string().c_str());
@@ -482,7 +509,7 @@ void printShapes(const std::vector<SceneShape>& shapes, const char* indent) {
 }  // namespace
 
 int runInfo(const Options& o) {
-    const SceneDesc desc = parseSceneFile(o.scene);
+    const SceneDesc desc = patchedScene(o).parse();
     BuildTimings timings;
     const World world = buildWorld(desc, buildOptions(o), &timings);
     const Bounds3 b = world.bounds();

@@ -12,6 +12,7 @@
 #include "strahl/integrator/integrator.h"
 #include "strahl/raster/rasterizer.h"
 #include "strahl/scene/scene_desc.h"
+#include "strahl/scene/scene_document.h"
 
 namespace strahl::app {
 
@@ -99,6 +100,27 @@ void addMemoryOptions(CLI::App& command, Options& o) {
         });
 }
 
+// --set POINTER=VALUE (repeatable): any scene setting, as a patch of the scene
+// document (docs/cli.md#scene-patches). Malformed arguments are usage errors.
+void addSetOption(CLI::App& command, Options& o) {
+    command
+        .add_option("--set", o.sets,
+                    "Set any scene key before parsing, by JSON pointer: --set /render/spp=64, "
+                    "--set /camera/fov=30, --set /film/aovs='[\"normal\"]' (repeat; after the "
+                    "other flags, later wins; VALUE is JSON, or else a string)")
+        ->type_name("POINTER=VALUE")
+        ->check([](const std::string& argument) {
+            try {
+                parseSetArgument(argument);
+                return std::string();
+            } catch (const Error& e) {
+                // "--set ARG: why" -> "'ARG': why" (CLI11 puts "--set: " in front).
+                const std::string message = e.what(), origin = "--set " + argument + ": ";
+                return "'" + argument + "': " + message.substr(message.rfind(origin, 0) == 0 ? origin.size() : 0);
+            }
+        });
+}
+
 }  // namespace
 
 std::optional<int> parseOptions(int argc, char** argv, Options& o) {
@@ -146,6 +168,7 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
                                         "(repeat; overrides film.aovs)")
         ->check(CLI::IsMember(std::vector<std::string>(aovNames().begin(), aovNames().end())));
     render->add_flag("--exr-float", o.exrFloat, "Write 32-bit float EXR channels instead of half");
+    addSetOption(*render, o);
     render->add_flag("-q,--quiet", o.quiet, "No progress display, summary or mesh warnings");
     std::string packets = "auto";
     render->add_option("--packets", packets,
@@ -215,6 +238,7 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
 
     CLI::App* info = app.add_subcommand("info", "Print primitive counts, bounds and memory");
     info->add_option("scene", o.scene, "Scene file")->required();
+    addSetOption(*info, o);
     addMemoryOptions(*info, o);
 
     CLI::App* bench = addBenchCommand(app, o.bench);

@@ -30,6 +30,7 @@ struct Options {
     std::string cropArgument;        // the option as given ("--region 0 0 8 8"), for messages
     std::vector<std::string> aovs;  // overrides film.aovs when given
     bool exrFloat = false;
+    std::vector<std::string> sets;  // --set POINTER=VALUE: scene patches, after the flags above
     bool quiet = false;
     PacketMode packets = PacketMode::Auto;
     int tileSize = 32;

@@ -1,12 +1,9 @@
 #include "render_control.h"
 
 #include <cstdint>
-#include <fstream>
-#include <iterator>
 #include <sstream>
 
 #include "strahl/core/error.h"
-#include "strahl/core/hash.h"
 
 namespace strahl::app {
 
@@ -50,37 +47,33 @@ std::string signalName(int signal) {
     return "signal " + std::to_string(signal);
 }
 
-std::string renderFingerprint(const Options& o, const SceneDesc& desc, const PixelRect& crop) {
+std::string renderFingerprint(const Options& o, const SceneDocument& document,
+                              const PixelRect& crop) {
     std::ostringstream f;
-    f << imageFingerprint(desc) << ", crop " << crop.x0 << "," << crop.y0 << "," << crop.x1
+    f << imageFingerprint(document) << ", crop " << crop.x0 << "," << crop.y0 << "," << crop.x1
       << "," << crop.y1 << ", tile " << o.tileSize;
     if (o.sampleOffset) f << ", samples from " << *o.sampleOffset;
     return f.str();
 }
 
-std::string splitFingerprint(const Options& o, const SceneDesc& desc) {
-    SceneDesc whole = desc;
-    whole.render.spp = 0;
-    std::string f = imageFingerprint(whole);
-    // imageFingerprint names the samples per pixel as ", N spp".
-    const std::string spp = ", 0 spp";
-    if (const size_t at = f.find(spp); at != std::string::npos) f.erase(at, spp.size());
-    return f + ", accel " + o.accel;
+namespace {
+
+std::string hex(uint64_t value) {
+    std::ostringstream text;
+    text << std::hex << value;
+    return text.str();
 }
 
-std::string imageFingerprint(const SceneDesc& desc) {
-    std::ifstream in(desc.file, std::ios::binary);
-    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    std::ostringstream f;
-    f << "scene " << desc.file.filename().string() << " fnv1a " << std::hex << fnv1a(bytes)
-      << std::dec << ", " << desc.film.width << "x" << desc.film.height << ", "
-      << desc.render.spp << " spp, seed " << desc.render.seed << ", " << desc.render.integrator
-      << " depth " << desc.render.maxDepth << (desc.render.russianRoulette ? " rr" : " no-rr")
-      << ", filter " << desc.film.filter;
-    if (desc.film.filterRadius) f << " r " << *desc.film.filterRadius;
-    f << ", aovs";
-    for (AovKind a : desc.film.aovs) f << " " << aovName(a);
-    return f.str();
+}  // namespace
+
+std::string splitFingerprint(const Options& o, const SceneDocument& document) {
+    return "scene " + document.file().filename().string() + " without spp fnv1a " +
+           hex(document.hash({"/film/outputs", "/render/spp"})) + ", accel " + o.accel;
+}
+
+std::string imageFingerprint(const SceneDocument& document) {
+    return "scene " + document.file().filename().string() + " fnv1a " +
+           hex(document.hash({"/film/outputs"}));
 }
 
 }  // namespace strahl::app

@@ -8,6 +8,7 @@
 
 #include "options.h"
 #include "strahl/scene/scene_desc.h"
+#include "strahl/scene/scene_document.h"
 
 namespace strahl::app {
 
@@ -34,25 +35,28 @@ std::string signalName(int signal);
 
 // Everything that decides the rendered image, as one line: a checkpoint made
 // with one fingerprint can only be resumed by a render with the same one. The
-// scene file is identified by a 64-bit FNV-1a hash of its bytes (the files it
-// refers to are not hashed: change them and the resumed image is a mix).
-std::string renderFingerprint(const Options& options, const SceneDesc& desc,
+// image fingerprint plus what is not in the scene document: the crop, the
+// tile size and the first sample index.
+std::string renderFingerprint(const Options& options, const SceneDocument& document,
                               const PixelRect& crop);
 
 // What decides the pixel values of the image, whatever part of it is
-// rendered: the scene (hashed as above), resolution, samples, seed,
-// integrator, filter and AOVs, but not the region, tiles or threads. Stored
-// in EXR outputs as strahl:fingerprint; `strahl assemble` stitches only
-// regions that agree on it, and --skip-existing re-renders an output made
-// with another one.
-std::string imageFingerprint(const SceneDesc& desc);
+// rendered: the scene file's name and a 64-bit FNV-1a hash of its document
+// with every command-line patch applied (SceneDocument::hash), leaving out
+// only /film/outputs (where the image goes, not what it is). So every scene
+// setting, from the file or from a flag or --set, is part of it, with no list
+// to keep; the files the scene refers to are not hashed (change them and a
+// resumed image is a mix). Stored in EXR outputs as strahl:fingerprint;
+// `strahl assemble` stitches only regions that agree on it, and
+// --skip-existing re-renders an output made with another one.
+std::string imageFingerprint(const SceneDocument& document);
 
 // What the parts of a render split by sample ranges (--sample-offset,
 // `strahl merge`, docs/farm.md) must share, stored in their EXRs as
-// strahl:split_fingerprint: imageFingerprint without the samples per pixel
-// (the parts differ in them), plus the accelerator (the naive tracer need not
-// round hits as Embree does). Not the tile size, threads or packet width:
-// they leave the image bit-identical; the crop is compared separately.
-std::string splitFingerprint(const Options& options, const SceneDesc& desc);
+// strahl:split_fingerprint: the document hashed also without /render/spp (the
+// parts differ in it), plus the accelerator (the naive tracer need not round
+// hits as Embree does). Not the tile size, threads or packet width: they
+// leave the image bit-identical; the crop is compared separately.
+std::string splitFingerprint(const Options& options, const SceneDocument& document);
 
 }  // namespace strahl::app

@@ -23,6 +23,7 @@
 #include "instance_arrays.h"
 #include "instance_flattening.h"
 #include "parametric_parser.h"
+#include "scene_json.h"
 #include "json_reader.h"
 #include "material_parser.h"
 #include "transform_parser.h"
@@ -534,15 +535,14 @@ LightDesc parseLight(const JsonValue& v, const fs::path& folder) {
 
 }  // namespace
 
-SceneDesc parseSceneText(const std::string& text, const fs::path& file) {
-    const std::string label = file.string();
-    const nlohmann::json document = scene_detail::parseJsonText(text, label);
+SceneDesc scene_detail::parseSceneJson(const nlohmann::json& document, const fs::path& file,
+                                       const std::string& label) {
     const JsonValue root(document, "", label);
     root.requireKeys(
         {"camera", "film", "render", "background", "materials", "groups", "shapes", "lights"});
 
     SceneDesc scene;
-    scene.file = fs::absolute(file).lexically_normal();
+    scene.file = file;
     const fs::path folder = scene.file.parent_path();
 
     // The camera's defaults depend on each other, so it is parsed even when absent.
@@ -577,20 +577,6 @@ SceneDesc parseSceneText(const std::string& text, const fs::path& file) {
             scene.lights.push_back(parseLight(lights->at(i), folder));
     }
     return scene;
-}
-
-SceneDesc parseSceneFile(const fs::path& file) {
-    const std::string label = file.string();
-    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> stream(std::fopen(file.c_str(), "rb"),
-                                                                 &std::fclose);
-    if (!stream) fail(label, ": cannot open: ", std::strerror(errno));
-    std::string text;
-    std::array<char, 1 << 16> buffer;
-    size_t n = 0;
-    while ((n = std::fread(buffer.data(), 1, buffer.size(), stream.get())) > 0)
-        text.append(buffer.data(), n);
-    if (std::ferror(stream.get())) fail(label, ": cannot read: ", std::strerror(errno));
-    return parseSceneText(text, file);
 }
 
 }  // namespace strahl

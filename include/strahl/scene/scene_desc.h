@@ -142,7 +142,8 @@ struct SceneDesc {
     std::vector<LightDesc> lights;
 };
 
-// Parse a scene file. Throws strahl::Error:
+// Parse a scene file (SceneDocument::read(file).parse(), scene_document.h).
+// Throws strahl::Error:
 //   "scene.json:12:5: syntax error: ..." for malformed JSON,
 //   "scene.json: /shapes/1: unknown key 'colour' (allowed: ...)" for bad content.
 SceneDesc parseSceneFile(const std::filesystem::path& file);
