@@ -82,6 +82,11 @@ ScenePatch parseSetArgument(std::string_view argument) {
     ScenePatch patch{std::string(argument.substr(0, equals)), {}, origin};
     if (!startsWith(patch.pointer, "/"))
         fail(origin, ": the pointer must start with '/', such as /render/spp");
+    try {
+        (void)json::json_pointer(patch.pointer);
+    } catch (const json::exception&) {
+        fail(origin, ": '", patch.pointer, "' is not a JSON pointer (RFC 6901: /key/key/index)");
+    }
     const std::string_view value = argument.substr(equals + 1);
     // JSON if it is JSON, else the text as a string.
     const json parsed = json::parse(value, nullptr, /*allow_exceptions=*/false);
@@ -138,12 +143,13 @@ void SceneDocument::apply(const ScenePatch& patch) {
         } else if (node->is_array()) {
             const std::optional<size_t> index = arrayIndex(token);
             if (!index || *index >= node->size())
-                fail(patch.origin, ": ", at.empty() ? "the document" : at, " is an array of ",
-                     node->size(), " values; '", token, "' is not an index in it");
+                fail(impl_->label, ": ", at.empty() ? "the document" : at, " is an array of ",
+                     node->size(), " values; '", token, "' is not an index in it (",
+                     patch.origin, ")");
             node = &(*node)[*index];
         } else {
-            fail(patch.origin, ": ", at.empty() ? "the document" : at, " is a ",
-                 node->type_name(), ", not an object");
+            fail(impl_->label, ": ", at.empty() ? "the document" : at, " is a ",
+                 node->type_name(), ", not an object (", patch.origin, ")");
         }
         at += '/';  // two appends: GCC 12 warns falsely (-Wrestrict) on "/" + string
         at += escapeToken(token);

@@ -76,7 +76,8 @@ TEST(ScenePatchCli, BadPatchesAreClearErrorsWithoutOutput) {
     EXPECT_TRUE(contains(r.err, "expected POINTER=VALUE")) << r.err;
     r = runStrahl(render + "--set /film/width/x=1");
     EXPECT_EQ(r.status, 1);
-    EXPECT_EQ(r.err, "strahl: error: --set /film/width/x=1: /film/width is a number, not an object\n");
+    EXPECT_EQ(r.err, "strahl: error: " + (dir / "quad.json").string() +
+                         ": /film/width is a number, not an object (--set /film/width/x=1)\n");
     r = runStrahl(render + "--set /render/spp=0");
     EXPECT_EQ(r.status, 1);
     EXPECT_TRUE(contains(r.err, "/render/spp: must be between 1 and")) << r.err;

@@ -74,14 +74,16 @@ TEST(ScenePatch, ALaterPatchWins) {
 TEST(ScenePatch, PatchesThatCannotApplyNameTheirOrigin) {
     SceneDocument doc = document();
     EXPECT_EQ(test::errorMessage([&] { doc.apply(parseSetArgument("/film/width/x=1")); }),
-              "--set /film/width/x=1: /film/width is a number, not an object");
+              "scene.json: /film/width is a number, not an object (--set /film/width/x=1)");
     EXPECT_EQ(test::errorMessage([&] { doc.apply(parseSetArgument("/shapes/3/type=mesh")); }),
-              "--set /shapes/3/type=mesh: /shapes is an array of 1 values; '3' is not an index "
-              "in it");
+              "scene.json: /shapes is an array of 1 values; '3' is not an index in it "
+              "(--set /shapes/3/type=mesh)");
     EXPECT_EQ(test::errorMessage([&] { doc.apply(parseSetArgument("/shapes/-/type=mesh")); }),
-              "--set /shapes/-/type=mesh: /shapes is an array of 1 values; '-' is not an index "
-              "in it");
-    EXPECT_EQ(test::errorMessage([&] { doc.apply({"/film/~2", "1", "--set /film/~2=1"}); }),
+              "scene.json: /shapes is an array of 1 values; '-' is not an index in it "
+              "(--set /shapes/-/type=mesh)");
+    EXPECT_EQ(test::errorMessage([&] { doc.apply({"/film/~2", "1", "--width 1"}); }),
+              "--width 1: '/film/~2' is not a JSON pointer (RFC 6901: /key/key/index)");
+    EXPECT_EQ(test::errorMessage([] { parseSetArgument("/film/~2=1"); }),
               "--set /film/~2=1: '/film/~2' is not a JSON pointer (RFC 6901: /key/key/index)");
     EXPECT_TRUE(doc.patches().empty());  // nothing half-applied
 }

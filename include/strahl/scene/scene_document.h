@@ -29,7 +29,8 @@ struct ScenePatch {
 
 // "--set POINTER=VALUE": VALUE is JSON (64, true, [1, 2], {"type": "box"},
 // "text"), or else a plain string (`--set /render/integrator=path`). Throws
-// strahl::Error for an argument without '=' or a pointer not starting with '/'.
+// strahl::Error "--set ARG: ..." for an argument without '=' or whose pointer
+// is not an RFC 6901 JSON pointer ("/key/key/index").
 ScenePatch parseSetArgument(std::string_view argument);
 
 class SceneDocument {
@@ -44,9 +45,10 @@ public:
     SceneDocument& operator=(SceneDocument&&) noexcept;
     ~SceneDocument();
 
-    // Assigns the patch's value; throws "<origin>: ..." when the pointer runs
-    // through a value that is not an object (or an array, with an index in
-    // range) or the value is malformed.
+    // Assigns the patch's value. Throws "<file>: <place> is a number, not an
+    // object (<origin>)" when the pointer runs through a value that is not an
+    // object (or an array, with an index in range), "<origin>: ..." for a
+    // malformed pointer or value; nothing is changed then.
     void apply(const ScenePatch& patch);
     // The patches applied so far, in order.
     const std::vector<ScenePatch>& patches() const;
