@@ -1,14 +1,5 @@
-// Bsdf: parameter validation, the mirror-image rule of the opaque BSDFs and the
-// dispatch to the models of bsdf_models.h.
-//
-// Parameter layout per kind:
-//   Diffuse            a_ = reflectance
-//   Phong, BlinnPhong  a_ = kd, b_ = ks, exponent_
-//   Conductor          a_ = eta, b_ = k, alphaX_, alphaY_
-//   Dielectric         a_ = tint, eta_, alphaX_ = alphaY_ = alpha
-//   Plastic            a_ = kd, eta_, alphaX_ = alphaY_, internalReflectance_
-//   MetallicRoughness  a_ = base, metallic_, alphaX_ = alphaY_, eta_
-// and c_ = albedo() for every kind.
+// Bsdf: parameter validation in the factories, the mirror-image rule of the
+// opaque BSDFs, and the dispatch (std::visit) to the models of bsdf_models.h.
 
 #include "strahl/bsdf/bsdf.h"
 
@@ -60,28 +51,6 @@ bool toUpperHemisphere(Vec3& wo, Vec3& wi) {
 
 }  // namespace
 
-template <typename Fn>
-auto Bsdf::visit(Fn&& fn) const {
-    const GgxDistribution ggx(alphaX_, alphaY_);
-    switch (kind_) {
-        case Kind::Phong:
-        case Kind::BlinnPhong:
-            return fn(PhongModel{a_, b_, exponent_, kind_ == Kind::BlinnPhong});
-        case Kind::Conductor:
-            return fn(ConductorModel{ggx, a_, b_});
-        case Kind::Dielectric:
-            return fn(DielectricModel{ggx, eta_, a_});
-        case Kind::Plastic:
-            return fn(PlasticModel{ggx, a_, eta_, internalReflectance_});
-        case Kind::MetallicRoughness:
-            return fn(MetallicRoughnessModel{ggx, a_, metallic_, dielectricF0(eta_)});
-        case Kind::Black:
-        case Kind::Diffuse:
-            break;
-    }
-    return fn(LambertModel{kind_ == Kind::Diffuse ? a_ : Color(0.0f)});
-}
-
 // ---- Factories -----------------------------------------------------------------
 
 Bsdf Bsdf::black() {
@@ -90,29 +59,19 @@ Bsdf Bsdf::black() {
 
 Bsdf Bsdf::diffuse(const Color& reflectance) {
     requireColor("diffuse", "reflectance", reflectance);
-    Bsdf b;
-    b.kind_ = Kind::Diffuse;
-    b.a_ = reflectance;
-    b.c_ = reflectance;
-    return b;
+    return Bsdf(LambertModel{reflectance}, reflectance);
 }
 
 Bsdf Bsdf::phong(const Color& kd, const Color& ks, float exponent) {
     requireColor("phong", "kd", kd);
     requireColor("phong", "ks", ks);
     requireNonNegative("phong", "exponent", exponent);
-    Bsdf b;
-    b.kind_ = Kind::Phong;
-    b.a_ = kd;
-    b.b_ = ks;
-    b.exponent_ = exponent;
-    b.c_ = glm::min(kd + ks, Color(1.0f));
-    return b;
+    return Bsdf(PhongModel{kd, ks, exponent, false}, glm::min(kd + ks, Color(1.0f)));
 }
 
 Bsdf Bsdf::blinnPhong(const Color& kd, const Color& ks, float exponent) {
     Bsdf b = phong(kd, ks, exponent);
-    b.kind_ = Kind::BlinnPhong;
+    std::get<PhongModel>(b.model_).blinn = true;
     return b;
 }
 
@@ -121,42 +80,28 @@ Bsdf Bsdf::conductor(const Color& eta, const Color& k, float alphaX, float alpha
     requireColor("conductor", "k", k);
     requireNonNegative("conductor", "alphaX", alphaX);
     requireNonNegative("conductor", "alphaY", alphaY);
-    Bsdf b;
-    b.kind_ = Kind::Conductor;
-    b.a_ = eta;
-    b.b_ = k;
-    b.alphaX_ = alphaX;
-    b.alphaY_ = alphaY;
-    b.c_ = fresnelConductor(1.0f, eta, k);  // normal-incidence reflectance F0
-    return b;
+    // albedo: the normal-incidence reflectance F0.
+    return Bsdf(ConductorModel{GgxDistribution(alphaX, alphaY), eta, k},
+                fresnelConductor(1.0f, eta, k));
 }
 
 Bsdf Bsdf::dielectric(float eta, float alpha, const Color& tint) {
     requirePositive("dielectric", "eta", eta);
     requireNonNegative("dielectric", "alpha", alpha);
     requireColor("dielectric", "tint", tint);
-    Bsdf b;
-    b.kind_ = Kind::Dielectric;
-    b.eta_ = eta;
-    b.alphaX_ = b.alphaY_ = alpha;
-    b.a_ = tint;
-    b.c_ = tint;  // glass passes everything (R + T = 1) up to the tint
-    return b;
+    // albedo: glass passes everything (R + T = 1) up to the tint.
+    return Bsdf(DielectricModel{GgxDistribution(alpha, alpha), eta, tint}, tint);
 }
 
 Bsdf Bsdf::plastic(const Color& kd, float eta, float alpha) {
     requireColor("plastic", "kd", kd);
     requirePositive("plastic", "eta", eta);
     requireNonNegative("plastic", "alpha", alpha);
-    Bsdf b;
-    b.kind_ = Kind::Plastic;
-    b.a_ = clamp01(kd);
-    b.eta_ = eta;
-    b.alphaX_ = b.alphaY_ = alpha;
+    const Color base = clamp01(kd);
     // Seen from inside the coat the relative index is 1 / eta.
-    b.internalReflectance_ = fresnelDiffuseReflectance(1.0f / eta);
-    b.c_ = b.a_;
-    return b;
+    return Bsdf(PlasticModel{GgxDistribution(alpha, alpha), base, eta,
+                             fresnelDiffuseReflectance(1.0f / eta)},
+                base);
 }
 
 Bsdf Bsdf::metallicRoughness(const Color& base, float metallic, float alpha, float eta) {
@@ -164,67 +109,72 @@ Bsdf Bsdf::metallicRoughness(const Color& base, float metallic, float alpha, flo
     requireNonNegative("metallicRoughness", "metallic", metallic);
     requireNonNegative("metallicRoughness", "alpha", alpha);
     requirePositive("metallicRoughness", "eta", eta);
-    Bsdf b;
-    b.kind_ = Kind::MetallicRoughness;
-    b.a_ = clamp01(base);
-    b.metallic_ = std::min(metallic, 1.0f);
-    b.alphaX_ = b.alphaY_ = std::min(alpha, 1.0f);
-    b.eta_ = eta;
-    b.c_ = b.a_;  // the diffuse colour of the dielectric and the F0 of the metal
-    return b;
+    const Color b = clamp01(base);
+    const float a = std::min(alpha, 1.0f);
+    // albedo: the diffuse colour of the dielectric and the F0 of the metal.
+    return Bsdf(MetallicRoughnessModel{GgxDistribution(a, a), b, std::min(metallic, 1.0f),
+                                       dielectricF0(eta)},
+                b);
 }
 
 // ---- Evaluation ----------------------------------------------------------------
 
 Color Bsdf::f(const Vec3& wo, const Vec3& wi) const {
-    if (kind_ == Kind::Black) return Color(0.0f);
-    if (!isOpaque()) return visit([&](const auto& model) { return model.f(wo, wi); });
-    Vec3 o = wo, i = wi;
-    if (!toUpperHemisphere(o, i)) return Color(0.0f);
-    return visit([&](const auto& model) { return model.f(o, i); });
+    return std::visit(
+        [&](const auto& model) -> Color {
+            if constexpr (!std::decay_t<decltype(model)>::kOpaque) {
+                return model.f(wo, wi);
+            } else {
+                Vec3 o = wo, i = wi;
+                if (!toUpperHemisphere(o, i)) return Color(0.0f);
+                return model.f(o, i);
+            }
+        },
+        model_);
 }
 
 float Bsdf::pdf(const Vec3& wo, const Vec3& wi) const {
-    if (kind_ == Kind::Black) return 0.0f;
-    if (!isOpaque()) return visit([&](const auto& model) { return model.pdf(wo, wi); });
-    Vec3 o = wo, i = wi;
-    if (!toUpperHemisphere(o, i)) return 0.0f;
-    return visit([&](const auto& model) { return model.pdf(o, i); });
+    return std::visit(
+        [&](const auto& model) -> float {
+            if constexpr (!std::decay_t<decltype(model)>::kOpaque) {
+                return model.pdf(wo, wi);
+            } else {
+                Vec3 o = wo, i = wi;
+                if (!toUpperHemisphere(o, i)) return 0.0f;
+                return model.pdf(o, i);
+            }
+        },
+        model_);
 }
 
 std::optional<BsdfSample> Bsdf::sample(const Vec3& wo, float uLobe, const Vec2& u) const {
-    if (kind_ == Kind::Black || wo.z == 0.0f) return std::nullopt;
-    if (!isOpaque()) return visit([&](const auto& model) { return model.sample(wo, uLobe, u); });
-    const bool flip = wo.z < 0.0f;
-    const Vec3 o(wo.x, wo.y, std::abs(wo.z));
-    auto s = visit([&](const auto& model) { return model.sample(o, uLobe, u); });
-    if (s && flip) s->wi.z = -s->wi.z;
-    return s;
+    if (wo.z == 0.0f) return std::nullopt;
+    return std::visit(
+        [&](const auto& model) -> std::optional<BsdfSample> {
+            if constexpr (!std::decay_t<decltype(model)>::kOpaque) {
+                return model.sample(wo, uLobe, u);
+            } else {
+                const bool flip = wo.z < 0.0f;
+                const Vec3 o(wo.x, wo.y, std::abs(wo.z));
+                auto s = model.sample(o, uLobe, u);
+                if (s && flip) s->wi.z = -s->wi.z;
+                return s;
+            }
+        },
+        model_);
 }
 
 bool Bsdf::isSpecular() const {
-    const bool smooth = GgxDistribution(alphaX_, alphaY_).smooth();
-    switch (kind_) {
-        case Kind::Black:
-            return true;  // no lobe at all: nothing for light sampling
-        case Kind::Diffuse:
-        case Kind::Phong:
-        case Kind::BlinnPhong:
-            return false;
-        case Kind::Conductor:
-            return smooth;
-        case Kind::Dielectric:
-            return smooth || eta_ == 1.0f;
-        case Kind::Plastic:
-            return smooth && maxComponent(a_) == 0.0f;
-        case Kind::MetallicRoughness:
-            return smooth && (metallic_ >= 1.0f || maxComponent(a_) == 0.0f);
-    }
-    return false;
+    return std::visit([](const auto& model) { return model.specular(); }, model_);
+}
+
+bool Bsdf::isOpaque() const {
+    return std::visit([](const auto& model) { return std::decay_t<decltype(model)>::kOpaque; },
+                      model_);
 }
 
 Color Bsdf::albedo() const {
-    return c_;
+    return albedo_;
 }
 
 }  // namespace strahl

@@ -18,19 +18,12 @@
 #include <optional>
 #include <span>
 #include <string_view>
+#include <utility>
 
+#include "strahl/bsdf/bsdf_models.h"
 #include "strahl/core/math.h"
 
 namespace strahl {
-
-struct BsdfSample {
-    Color f{0.0f};
-    Vec3 wi{0.0f};
-    float pdf = 0.0f;  // solid-angle density, or the lobe probability for a specular sample
-    bool specular = false;
-    bool transmission = false;
-    float eta = 1.0f;  // relative index of refraction crossed (1 for reflection)
-};
 
 // Complex index of refraction of a metal at the R, G, B wavelengths.
 struct MetalPreset {
@@ -41,10 +34,11 @@ struct MetalPreset {
 std::span<const MetalPreset> metalPresets();
 std::optional<MetalPreset> findMetalPreset(std::string_view name);
 
+// One scattering model (bsdf_models.h) with validated parameters, made by the
+// factories below.
 class Bsdf {
 public:
-    enum class Kind { Black, Diffuse, Phong, BlinnPhong, Conductor, Dielectric, Plastic, MetallicRoughness };
-
+    Bsdf() = default;  // black()
     // Absorbs everything (purely emissive surfaces).
     static Bsdf black();
     // Lambert: f = R / pi.
@@ -71,7 +65,6 @@ public:
     static Bsdf metallicRoughness(const Color& base, float metallic, float alpha,
                                   float eta = 1.5f);
 
-    Kind kind() const { return kind_; }
     Color f(const Vec3& wo, const Vec3& wi) const;
     float pdf(const Vec3& wo, const Vec3& wi) const;
     // uLobe picks the lobe, u the direction within it; nullopt if no direction
@@ -80,7 +73,7 @@ public:
     // True if every lobe is a delta (light sampling cannot contribute).
     bool isSpecular() const;
     // True if it never transmits (the integrator may then flip the frame).
-    bool isOpaque() const { return kind_ != Kind::Dielectric; }
+    bool isOpaque() const;
     // A reflectance-like colour for the albedo AOV (denoisers).
     Color albedo() const;
 
@@ -88,16 +81,10 @@ public:
     static float roughnessToAlpha(float roughness) { return roughness * roughness; }
 
 private:
-    // Calls fn with the scattering model of this kind (bsdf_models.h); defined
-    // and used in bsdf.cpp only.
-    template <typename Fn>
-    auto visit(Fn&& fn) const;
+    Bsdf(BsdfModel model, const Color& albedo) : model_(std::move(model)), albedo_(albedo) {}
 
-    Kind kind_ = Kind::Black;
-    Color a_{0.0f}, b_{0.0f};  // kind-specific colours (see bsdf.cpp)
-    Color c_{0.0f};            // albedo(), computed by the factory
-    float alphaX_ = 0.0f, alphaY_ = 0.0f, eta_ = 1.0f, exponent_ = 0.0f, metallic_ = 0.0f;
-    float internalReflectance_ = 0.0f;  // plastic: Fbar_dr inside the coat, cached per material
+    BsdfModel model_;
+    Color albedo_{0.0f};  // albedo(), computed by the factory
 };
 
 }  // namespace strahl

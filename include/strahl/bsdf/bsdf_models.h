@@ -1,23 +1,38 @@
 #pragma once
-// The scattering models behind strahl::Bsdf, one struct per model, each with
-// f / pdf / sample in the local frame. Bsdf builds them on the fly from its
-// parameters and dispatches on its kind; use them directly only in tests.
+// The scattering models behind strahl::Bsdf, a closed family: one struct per
+// model, each with f / pdf / sample in the local frame, specular() (every lobe
+// a delta: light sampling cannot contribute) and kOpaque. Bsdf holds one of
+// them in a std::variant (BsdfModel below) built by its factories, which
+// validate the parameters; use the models directly only in tests.
 //
 // Opaque models (all but DielectricModel) see wo in the upper hemisphere only
 // (Bsdf mirrors the lower one onto it) and return 0 / nullopt for wi below.
 // Derivations and references: docs/materials.md.
 
 #include <optional>
+#include <variant>
 
-#include "strahl/bsdf/bsdf.h"
+#include "strahl/bsdf/bsdf_sample.h"
 #include "strahl/bsdf/microfacet.h"
 
 namespace strahl::bsdf_models {
+
+// Absorbs everything (purely emissive surfaces): no lobe at all, so nothing
+// for light sampling either.
+struct BlackModel {
+    static constexpr bool kOpaque = true;
+    bool specular() const { return true; }
+    Color f(const Vec3&, const Vec3&) const { return Color(0.0f); }
+    float pdf(const Vec3&, const Vec3&) const { return 0.0f; }
+    std::optional<BsdfSample> sample(const Vec3&, float, const Vec2&) const { return std::nullopt; }
+};
 
 // Lambert: f = R / pi, cosine-weighted sampling.
 struct LambertModel {
     Color reflectance;
 
+    static constexpr bool kOpaque = true;
+    bool specular() const { return false; }
     Color f(const Vec3& wo, const Vec3& wi) const;
     float pdf(const Vec3& wo, const Vec3& wi) const;
     std::optional<BsdfSample> sample(const Vec3& wo, float uLobe, const Vec2& u) const;
@@ -30,6 +45,8 @@ struct PhongModel {
     float exponent = 1.0f;
     bool blinn = false;
 
+    static constexpr bool kOpaque = true;
+    bool specular() const { return false; }
     // Probability of sampling the specular lobe: mean(ks) / (mean(kd) + mean(ks)).
     float specularProbability() const;
     Color specularF(const Vec3& wo, const Vec3& wi) const;
@@ -44,6 +61,8 @@ struct ConductorModel {
     GgxDistribution ggx;
     Color eta, k;
 
+    static constexpr bool kOpaque = true;
+    bool specular() const { return ggx.smooth(); }
     Color f(const Vec3& wo, const Vec3& wi) const;
     float pdf(const Vec3& wo, const Vec3& wi) const;
     std::optional<BsdfSample> sample(const Vec3& wo, float uLobe, const Vec2& u) const;
@@ -55,7 +74,9 @@ struct DielectricModel {
     float eta = 1.5f;  // n_inside / n_outside, inside = -z
     Color tint{1.0f};
 
+    static constexpr bool kOpaque = false;
     bool smooth() const { return ggx.smooth() || eta == 1.0f; }
+    bool specular() const { return smooth(); }
     Color f(const Vec3& wo, const Vec3& wi) const;
     float pdf(const Vec3& wo, const Vec3& wi) const;
     std::optional<BsdfSample> sample(const Vec3& wo, float uLobe, const Vec2& u) const;
@@ -68,6 +89,9 @@ struct PlasticModel {
     float eta = 1.5f;
     float internalReflectance = 0.0f;  // Fbar_dr seen from inside the coat
 
+    static constexpr bool kOpaque = true;
+    // A black base leaves only the coat's delta lobe when it is smooth.
+    bool specular() const { return ggx.smooth() && maxComponent(kd) == 0.0f; }
     float specularProbability(float fresnelO) const;
     Color diffuseF(const Vec3& wo, const Vec3& wi) const;
     Color f(const Vec3& wo, const Vec3& wi) const;
@@ -84,6 +108,11 @@ struct MetallicRoughnessModel {
     float metallic = 0.0f;
     float f0Dielectric = 0.04f;
 
+    static constexpr bool kOpaque = true;
+    // Smooth and without a diffuse part (all metal, or a black base).
+    bool specular() const {
+        return ggx.smooth() && (metallic >= 1.0f || maxComponent(base) == 0.0f);
+    }
     Color specularFresnel(float cosThetaH) const;
     float specularProbability(const Vec3& wo) const;
     Color diffuseF(const Vec3& wo, const Vec3& wi) const;
@@ -93,3 +122,13 @@ struct MetallicRoughnessModel {
 };
 
 }  // namespace strahl::bsdf_models
+
+namespace strahl {
+
+// The closed set of scattering models a Bsdf can be.
+using BsdfModel =
+    std::variant<bsdf_models::BlackModel, bsdf_models::LambertModel, bsdf_models::PhongModel,
+                 bsdf_models::ConductorModel, bsdf_models::DielectricModel,
+                 bsdf_models::PlasticModel, bsdf_models::MetallicRoughnessModel>;
+
+}  // namespace strahl
