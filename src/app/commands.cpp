@@ -1,7 +1,6 @@
 #include "commands.h"
 
 #include <algorithm>
-#include <sstream>
 #include <cctype>
 #include <chrono>
 #include <cstdio>
@@ -12,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "existing_outputs.h"
+#include "scene_loading.h"
 #include "frame_pattern.h"
 #include "render_control.h"
 #include "stats_file.h"
@@ -31,48 +31,6 @@
 namespace strahl::app {
 
 namespace {
-
-// The command-line flags that change scene settings, as patches of the scene
-// document (scene_document.h), then --set in the order given; a later patch
-// wins. A flag for another scene key is one more line here. -o is not a patch:
-// its files are relative to the current folder, not the scene's, and where an
-// image is written is not part of what it is (applyOutputs).
-std::vector<ScenePatch> scenePatches(const Options& o) {
-    std::vector<ScenePatch> patches;
-    const auto add = [&](const char* pointer, const nlohmann::json& value, std::string origin) {
-        patches.push_back({pointer, value.dump(), std::move(origin)});
-    };
-    const auto flag = [](const char* name, const auto& value) {
-        std::ostringstream text;
-        text << name << " " << value;
-        return text.str();
-    };
-    if (o.width) add("/film/width", *o.width, flag("--width", *o.width));
-    if (o.height) add("/film/height", *o.height, flag("--height", *o.height));
-    if (o.spp) add("/render/spp", *o.spp, flag("--spp", *o.spp));
-    if (o.integrator) add("/render/integrator", *o.integrator, flag("--integrator", *o.integrator));
-    if (o.maxDepth) add("/render/max_depth", *o.maxDepth, flag("--max-depth", *o.maxDepth));
-    if (o.seed) add("/render/seed", *o.seed, flag("--seed", *o.seed));
-    if (o.exrFloat) add("/film/exr_float", true, "--exr-float");
-    if (!o.aovs.empty()) {
-        std::vector<std::string> aovs;  // each once, in the order first given
-        std::string origin;
-        for (const std::string& a : o.aovs) {
-            if (std::find(aovs.begin(), aovs.end(), a) == aovs.end()) aovs.push_back(a);
-            origin += (origin.empty() ? "--aov " : " --aov ") + a;
-        }
-        add("/film/aovs", aovs, origin);
-    }
-    for (const std::string& argument : o.sets) patches.push_back(parseSetArgument(argument));
-    return patches;
-}
-
-// The scene file as a document with the command line's patches applied.
-SceneDocument patchedScene(const Options& o) {
-    SceneDocument document = SceneDocument::read(o.scene);
-    for (const ScenePatch& patch : scenePatches(o)) document.apply(patch);
-    return document;
-}
 
 // -o replaces the scene's film.outputs (its names are relative to the
 // current folder).
@@ -180,16 +138,6 @@ std::string humanCount(double n) {
     else if (n >= 1e3) std::snprintf(buf, sizeof buf, "%.1fk", n / 1e3);
     else std::snprintf(buf, sizeof buf, "%.0f", n);
     return buf;
-}
-
-// The scene build settings of the command line (render and info).
-BuildOptions buildOptions(const Options& o) {
-    BuildOptions build;
-    build.threads = o.threads.value_or(0);
-    build.bvhQuality = bvhQualityFromName(o.bvhQuality);
-    build.compact = o.compact;
-    if (o.memoryLimit) build.memoryLimitBytes = parseByteSize(*o.memoryLimit, "--memory-limit");
-    return build;
 }
 
 // Everything that can be checked before the scene's meshes are loaded, so a
@@ -479,88 +427,6 @@ int runRender(const Options& o) {
         progress.event("error", {{"message", e.what()}, {"exit_status", 1}});
         throw;
     }
-}
-
-namespace {
-
-// One line per shape: its index (the geomID within its list), name and size.
-void printShapes(const std::vector<SceneShape>& shapes, const char* indent) {
-    for (size_t i = 0; i < shapes.size(); ++i) {
-        const SceneShape& shape = shapes[i];
-        if (shape.user) {
-            std::printf("%s[%zu] %-24s %10u %-9s %s\n", indent, i, shape.name.c_str(),
-                        shape.user->primitiveCount(), shape.user->primitiveNoun(),
-                        shape.user->describe().c_str());
-            continue;
-        }
-        const TriangleMesh& m = shape.mesh;
-        std::printf("%s[%zu] %-24s %10zu triangles %10zu vertices%s%s%s\n", indent, i,
-                    shape.name.c_str(), m.triangleCount(), m.vertexCount(),
-                    m.normals.empty() ? "" : " normals", m.uvs.empty() ? "" : " uvs",
-                    shape.tessellated
-                        ? (" tessellated " + shape.tessellated->surface().describe() +
-                           (shape.tessellated->normals() == ParametricNormals::Exact ? ", exact normals"
-                                                                                      : ", interpolated normals"))
-                              .c_str()
-                        : "");
-    }
-}
-
-}  // namespace
-
-int runInfo(const Options& o) {
-    const SceneDesc desc = patchedScene(o).parse();
-    BuildTimings timings;
-    const World world = buildWorld(desc, buildOptions(o), &timings);
-    const Bounds3 b = world.bounds();
-    std::printf("scene      %s\n", desc.file.string().c_str());
-    std::printf("shapes     %zu\n", world.shapes.size());
-    printShapes(world.shapes, "  ");
-    if (!world.prototypes.empty()) {
-        std::vector<size_t> placements(world.prototypes.size(), 0);
-        for (const SceneInstance& instance : world.instances) ++placements[instance.prototype];
-        std::printf("groups     %zu, %zu instances\n", world.prototypes.size(),
-                    world.instances.size());
-        for (size_t p = 0; p < world.prototypes.size(); ++p) {
-            std::printf("  group '%s', placed %zu times\n", world.prototypes[p].name.c_str(),
-                        placements[p]);
-            printShapes(world.prototypes[p].shapes, "    ");
-        }
-    }
-    std::printf("triangles  %zu", world.triangleCount());
-    if (!world.instances.empty())
-        std::printf(" stored, %zu instanced", world.instancedTriangleCount());
-    std::printf("\n");
-    std::printf("user prims %zu\n", world.userPrimitiveCount());
-    std::printf("materials  %zu\n", world.materials.size());
-    // Every light the integrators sample: the scene's lights, one triangle
-    // light per emissive triangle, and the background's sky.
-    size_t areaLights = 0;
-    for (const Light& light : world.lightSet.lights())
-        if (std::holds_alternative<TriangleLight>(light.kind)) ++areaLights;
-    const size_t sky = world.lightSet.lights().size() - world.lights.size() - areaLights;
-    std::printf("lights     %zu (%zu from the scene file, %zu emissive triangles, %zu background sky)\n",
-                world.lightSet.lights().size(), world.lights.size(), areaLights, sky);
-    std::printf("bounds     (%g, %g, %g) - (%g, %g, %g)\n", b.min.x, b.min.y, b.min.z, b.max.x,
-                b.max.y, b.max.z);
-    std::printf("memory     shapes %s, bvh %s (%s, %s%s), peak resident %s\n",
-                formatBytes(world.shapeMemoryBytes()).c_str(),
-                formatBytes(world.accel->memoryBytes()).c_str(), o.bvhQuality.c_str(),
-                o.compact ? "compact" : "not compact (--no-compact)",
-                world.triangleCount()
-                    ? (", " +
-                       formatBytes((world.shapeMemoryBytes() + world.accel->memoryBytes()) /
-                                   world.triangleCount()) +
-                       " per stored triangle with its mesh data")
-                          .c_str()
-                    : "",
-                formatBytes(peakResidentBytes()).c_str());
-    std::printf("camera     %s\n", describeCamera(desc.camera).c_str());
-    std::printf("film       %dx%d, %d spp, integrator %s\n", desc.film.width, desc.film.height,
-                desc.render.spp, desc.render.integrator.c_str());
-    std::printf("timing     load %.2f s, bvh %.2f s\n", timings.loadSeconds, timings.bvhSeconds);
-    std::printf("embree     %s, packets of %d\n", embreeVersion(), resolvePacketWidth(PacketMode::Auto, *world.accel));
-    return 0;
 }
 
 }  // namespace strahl::app

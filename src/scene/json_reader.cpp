@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <system_error>
@@ -285,6 +286,15 @@ std::filesystem::path resolveExistingFile(const std::filesystem::path& folder,
     if (!std::filesystem::is_regular_file(path, ec))
         value.fail("no such ", noun, " '", value.string(), "' (looked at ", path.string(), ")");
     return path;
+}
+
+bool hasExtension(const std::filesystem::path& path, std::span<const std::string_view> extensions) {
+    std::string ext = path.extension().string();
+    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    for (std::string_view allowed : extensions) {
+        if (ext == allowed) return true;
+    }
+    return false;
 }
 
 }  // namespace strahl::scene_detail

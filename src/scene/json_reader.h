@@ -96,6 +96,9 @@ private:
 // "a, b, c": the items joined for error messages.
 std::string joinList(std::span<const std::string_view> items);
 
+// Whether the path's extension, lower-cased, is one of `extensions` (".exr").
+bool hasExtension(const std::filesystem::path& path, std::span<const std::string_view> extensions);
+
 // A path from the scene file: relative paths are relative to the scene file's
 // folder, absolute ones are kept. Fails on an empty string.
 std::filesystem::path resolvePath(const std::filesystem::path& folder, const JsonValue& value);

@@ -1,38 +1,32 @@
-// Scene file (JSON with comments) to SceneDesc. The format is documented key by
-// key in docs/scene-format.md; this file checks every value it reads and names
-// the JSON pointer of anything it rejects. Mesh, texture and environment files
+// Scene document to SceneDesc: the top level, the shapes and the groups here;
+// the camera, film and render settings, materials and lights in their own
+// *_parser.cpp files. The format is documented key by key in
+// docs/scene-format.md; every value read is checked, and anything rejected is
+// named by its JSON pointer. Mesh, texture and environment files
 // are only checked to exist; three kinds of file are read here, because their
 // content is part of the description and their errors must name its place: a
 // glTF file's cameras (a camera chosen from it), Bézier patch files (.bpt) and
 // height images of parametric shapes (whose surfaces are built at parse time).
 
 #include <algorithm>
-#include <array>
-#include <cctype>
-#include <cerrno>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
-#include <glm/gtc/matrix_transform.hpp>
 #include <limits>
 #include <memory>
 #include <span>
 #include <string_view>
 
+#include "camera_parser.h"
+#include "film_parser.h"
 #include "implicit_parser.h"
 #include "instance_arrays.h"
 #include "instance_flattening.h"
+#include "json_reader.h"
+#include "light_parser.h"
+#include "material_parser.h"
 #include "parametric_parser.h"
 #include "scene_json.h"
-#include "json_reader.h"
-#include "material_parser.h"
 #include "transform_parser.h"
 #include "strahl/core/error.h"
-#include "strahl/core/filter.h"
-#include "strahl/film/image_output.h"
-#include "strahl/integrator/integrator.h"
-#include "strahl/meshio/gltf_camera.h"
-#include "strahl/core/closed_family.h"
 #include "strahl/scene/scene_desc.h"
 
 namespace strahl {
@@ -40,227 +34,15 @@ namespace {
 
 namespace fs = std::filesystem;
 using scene_detail::JsonValue;
+using scene_detail::hasExtension;
+using scene_detail::parseCamera;
+using scene_detail::parseFilm;
+using scene_detail::parseLight;
+using scene_detail::parseRender;
 using scene_detail::joinList;
 using scene_detail::parseTransform;
 using scene_detail::resolveExistingFile;
 using scene_detail::resolvePath;
-
-constexpr int64_t kMaxSpp = 65536;
-// Below this sine of the angle between up and the viewing axis, the camera frame
-// is undefined.
-constexpr float kMinUpSine = 1e-6f;
-
-bool hasExtension(const fs::path& path, std::span<const std::string_view> extensions) {
-    std::string ext = path.extension().string();
-    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-    for (std::string_view allowed : extensions) {
-        if (ext == allowed) return true;
-    }
-    return false;
-}
-
-// --- camera --------------------------------------------------------------------
-
-ImageWindow parseWindow(const JsonValue& value) {
-    if (value.size() != 4)
-        value.fail("expected an array of 4 numbers [l, r, b, t], got an array of ", value.size());
-    ImageWindow w{value.at(0).number(), value.at(1).number(), value.at(2).number(),
-                  value.at(3).number()};
-    if (!(w.l < 0.0f && 0.0f < w.r && w.b < 0.0f && 0.0f < w.t))
-        value.fail("must satisfy l < 0 < r and b < 0 < t, got [", w.l, ", ", w.r, ", ", w.b, ", ",
-                   w.t, "]");
-    return w;
-}
-
-// The thin lens keys, which every camera takes.
-void parseLens(const JsonValue& v, CameraDesc& c) {
-    if (auto aperture = v.find("aperture_radius")) {
-        c.apertureRadius = aperture->number();
-        if (!(c.apertureRadius >= 0.0f))
-            aperture->fail("must be at least 0, got ", aperture->raw().dump());
-    }
-    if (auto focus = v.find("focus_distance")) {
-        const float f = focus->number();
-        if (!(f > 0.0f)) focus->fail("must be greater than 0, got ", focus->raw().dump());
-        c.focusDistance = f;
-    }
-}
-
-// A camera a glTF file places: "gltf" names the file, "gltf_camera" the camera
-// (an index among the placed cameras, or a camera's or node's name; default 0).
-CameraDesc parseGltfCamera(const JsonValue& v, const fs::path& folder) {
-    v.requireKeys({"gltf", "gltf_camera", "aperture_radius", "focus_distance"});
-    const JsonValue file = v.get("gltf");
-    const fs::path path = resolveExistingFile(folder, file, "glTF file");
-    std::vector<GltfCamera> cameras;
-    try {
-        cameras = loadGltfCameras(path);
-    } catch (const Error& e) {
-        file.fail(e.what());
-    }
-    if (cameras.empty()) file.fail(path.filename().string(), " places no camera in its scene");
-    size_t chosen = 0;
-    if (auto which = v.find("gltf_camera")) {
-        if (which->raw().is_string()) {
-            const std::string name = which->string();
-            const auto found = std::find_if(cameras.begin(), cameras.end(),
-                                            [&](const GltfCamera& c) { return c.name == name; });
-            if (found == cameras.end()) {
-                std::string names;
-                for (const GltfCamera& c : cameras) names += (names.empty() ? "" : ", ") + c.name;
-                which->fail("no camera named '", name, "' (the file has: ", names, ")");
-            }
-            chosen = size_t(found - cameras.begin());
-        } else {
-            chosen = size_t(which->unsignedInteger(cameras.size() - 1));
-        }
-    }
-    const GltfCamera& g = cameras[chosen];
-    CameraDesc c;
-    c.eye = g.eye;
-    c.back = g.back;
-    c.up = g.up;
-    if (g.orthographic) {
-        c.projection = Projection::Orthographic;
-        c.window = ImageWindow{-g.xmag, g.xmag, -g.ymag, g.ymag};
-    } else {
-        c.fovYDegrees = g.yfovDegrees;
-    }
-    parseLens(v, c);
-    return c;
-}
-
-CameraDesc parseCamera(const JsonValue& v, const fs::path& folder) {
-    if (v.has("gltf")) return parseGltfCamera(v, folder);
-    v.requireKeys({"type", "eye", "look_at", "back", "up", "focal_distance", "fov", "window",
-                   "aperture_radius", "focus_distance"});
-    CameraDesc c;
-    if (auto type = v.find("type"))
-        c.projection = type->oneOf({"perspective", "orthographic"}) == "perspective"
-                           ? Projection::Perspective
-                           : Projection::Orthographic;
-    if (auto eye = v.find("eye")) c.eye = eye->vec3();
-
-    // The back axis w, from "back" or from the eye and "look_at".
-    if (v.has("look_at") && v.has("back")) v.fail("'look_at' and 'back' are exclusive: give one");
-    Vec3 w;
-    if (auto back = v.find("back")) {
-        c.back = back->vec3();
-        if (*c.back == Vec3(0.0f)) back->fail("must be non-zero");
-        w = *c.back;
-    } else {
-        auto lookAt = v.find("look_at");
-        c.lookAt = lookAt ? lookAt->vec3() : Vec3(0.0f);
-        w = c.eye - *c.lookAt;
-        const JsonValue& where = lookAt ? *lookAt : v;
-        if (w == Vec3(0.0f)) where.fail("the camera looks at its own eye position");
-        if (!isFinite(w)) where.fail("eye - look_at exceeds the float range");
-    }
-    if (auto up = v.find("up")) {
-        c.up = up->vec3();
-        if (c.up == Vec3(0.0f)) up->fail("must be non-zero");
-        if (glm::length(glm::cross(unitVector(w), unitVector(c.up))) < kMinUpSine)
-            up->fail("is parallel to the viewing direction");
-    } else if (glm::length(glm::cross(unitVector(w), c.up)) < kMinUpSine) {
-        v.fail("the viewing direction is vertical: give an 'up' not parallel to it");
-    }
-
-    if (auto d = v.find("focal_distance")) {
-        c.focalDistance = d->number();
-        if (!(c.focalDistance > 0.0f)) d->fail("must be greater than 0, got ", d->raw().dump());
-    }
-    if (auto fov = v.find("fov")) {
-        if (c.projection != Projection::Perspective)
-            fov->fail("only for a perspective camera (this one is orthographic)");
-        if (v.has("window")) v.fail("'fov' and 'window' are exclusive: give one");
-        const float degrees = fov->number();
-        if (!(degrees > 0.0f && degrees < 180.0f))
-            fov->fail("must be greater than 0 and less than 180, got ", fov->raw().dump());
-        c.fovYDegrees = degrees;
-    }
-    if (auto window = v.find("window")) c.window = parseWindow(*window);
-    parseLens(v, c);
-
-    if (!c.fovYDegrees && !c.window) {
-        if (c.projection == Projection::Perspective)
-            c.fovYDegrees = 45.0f;
-        else
-            c.window = ImageWindow{};
-    }
-    return c;
-}
-
-// --- film and render -----------------------------------------------------------
-
-FilmDesc parseFilm(const JsonValue& v, const fs::path& folder) {
-    v.requireKeys({"width", "height", "outputs", "aovs", "exr_float", "filter"});
-    FilmDesc f;
-    if (auto width = v.find("width")) f.width = static_cast<int>(width->integer(1, kMaxFilmSide));
-    if (auto height = v.find("height"))
-        f.height = static_cast<int>(height->integer(1, kMaxFilmSide));
-    if (int64_t(f.width) * f.height > kMaxFilmPixels)
-        v.fail("width x height = ", int64_t(f.width) * f.height, " pixels, more than the limit of ",
-               kMaxFilmPixels, " (2^28)");
-
-    if (auto outputs = v.find("outputs")) {
-        for (size_t i = 0; i < outputs->size(); ++i) {
-            const JsonValue output = outputs->at(i);
-            fs::path path = resolvePath(folder, output);
-            if (!hasExtension(path, supportedImageExtensions()))
-                output.fail("'", path.filename().string(), "' is not a supported image format ",
-                            "(extensions: ", joinList(supportedImageExtensions()), ")");
-            f.outputs.push_back(std::move(path));
-        }
-    }
-    if (auto aovs = v.find("aovs")) {
-        for (size_t i = 0; i < aovs->size(); ++i) {
-            const JsonValue aov = aovs->at(i);
-            const std::string name = aov.oneOf(aovNames());
-            const AovKind kind = *aovFromName(name);
-            if (std::find(f.aovs.begin(), f.aovs.end(), kind) != f.aovs.end())
-                aov.fail("'", name, "' is listed twice");
-            f.aovs.push_back(kind);
-        }
-    }
-    if (auto exrFloat = v.find("exr_float")) f.exrFloat = exrFloat->boolean();
-    if (auto filter = v.find("filter")) {
-        if (filter->raw().is_object()) {
-            filter->requireKeys({"type", "radius"});
-            f.filter = filter->get("type").oneOf(PixelFilter::names());
-            if (auto radius = filter->find("radius")) {
-                const float r = radius->number();
-                // Beyond 16 pixels a filter is a blur, not an antialiasing filter.
-                if (!(r > 0.0f && r <= 16.0f))
-                    radius->fail("must be greater than 0 and at most 16 pixels, got ",
-                                 radius->raw().dump());
-                f.filterRadius = r;
-            }
-        } else {
-            f.filter = filter->oneOf(PixelFilter::names());
-        }
-    }
-    return f;
-}
-
-RenderDesc parseRender(const JsonValue& v) {
-    v.requireKeys({"integrator", "spp", "seed", "max_depth", "russian_roulette", "ao_distance",
-                   "ao_samples"});
-    RenderDesc r;
-    if (auto integrator = v.find("integrator"))
-        r.integrator = integrator->oneOf(integratorNames());
-    if (auto spp = v.find("spp")) r.spp = static_cast<int>(spp->integer(1, kMaxSpp));
-    if (auto seed = v.find("seed"))
-        r.seed = seed->unsignedInteger(std::numeric_limits<uint64_t>::max());
-    // Paths longer than 1024 bounces carry no measurable energy.
-    if (auto depth = v.find("max_depth")) r.maxDepth = static_cast<int>(depth->integer(0, 1024));
-    if (auto rr = v.find("russian_roulette")) r.russianRoulette = rr->boolean();
-    if (auto distance = v.find("ao_distance")) {
-        r.aoDistance = distance->number();
-        if (!(r.aoDistance >= 0.0f)) distance->fail("must be non-negative, got ", r.aoDistance);
-    }
-    if (auto samples = v.find("ao_samples")) r.aoSamples = static_cast<int>(samples->integer(1, 4096));
-    return r;
-}
 
 // --- shapes --------------------------------------------------------------------
 
@@ -497,40 +279,6 @@ std::vector<GroupDesc> parseGroups(const JsonValue& groups, const ShapeContext& 
         result.push_back(std::move(group));
     }
     return result;
-}
-
-// --- lights --------------------------------------------------------------------
-
-// What a light kind's parse() reads the light object through: the object, the
-// type name it was given (a kind may answer to several) and files resolved
-// against the scene's folder.
-class LightReader {
-public:
-    LightReader(const JsonValue& light, std::string_view name, const fs::path& folder)
-        : light_(light), name_(name), folder_(folder) {}
-
-    const JsonValue& json() const { return light_; }
-    std::string_view name() const { return name_; }
-    fs::path existingFile(const JsonValue& v, std::string_view noun) const {
-        return resolveExistingFile(folder_, v, noun);
-    }
-
-private:
-    const JsonValue& light_;
-    std::string_view name_;
-    const fs::path& folder_;
-};
-
-LightDesc parseLight(const JsonValue& v, const fs::path& folder) {
-    LightDesc l;
-    l.where = v.pointer();
-    static constexpr auto kTypes = kindNames<LightKind>();
-    const std::string type = v.get("type").oneOf(kTypes);
-    const LightReader reader(v, type, folder);
-    l.light = *withKindNamed<LightKind>(type, [&](auto kind) -> LightKind {
-        return decltype(kind)::type::parse(reader);
-    });
-    return l;
 }
 
 }  // namespace

@@ -1,0 +1,17 @@
+#pragma once
+// Internal to the scene module: the scene file's "camera" (docs/camera.md,
+// docs/scene-format.md#camera): the frame, the projection and its window,
+// the thin lens, or a camera taken from a glTF file (read here, so an error
+// names its place).
+
+#include <filesystem>
+
+#include "json_reader.h"
+#include "strahl/scene/scene_desc.h"
+
+namespace strahl::scene_detail {
+
+// `v` may be an empty object (no "camera": every default).
+CameraDesc parseCamera(const JsonValue& v, const std::filesystem::path& folder);
+
+}  // namespace strahl::scene_detail

@@ -1,0 +1,94 @@
+// The scene file's "film" and "render" objects (film_parser.h).
+
+#include "film_parser.h"
+
+#include <algorithm>
+#include <limits>
+#include <string>
+
+#include "strahl/core/error.h"
+#include "strahl/core/filter.h"
+#include "strahl/film/image_output.h"
+#include "strahl/integrator/integrator.h"
+
+namespace strahl::scene_detail {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int64_t kMaxSpp = 65536;
+
+}  // namespace
+
+FilmDesc parseFilm(const JsonValue& v, const fs::path& folder) {
+    v.requireKeys({"width", "height", "outputs", "aovs", "exr_float", "filter"});
+    FilmDesc f;
+    if (auto width = v.find("width")) f.width = static_cast<int>(width->integer(1, kMaxFilmSide));
+    if (auto height = v.find("height"))
+        f.height = static_cast<int>(height->integer(1, kMaxFilmSide));
+    if (int64_t(f.width) * f.height > kMaxFilmPixels)
+        v.fail("width x height = ", int64_t(f.width) * f.height, " pixels, more than the limit of ",
+               kMaxFilmPixels, " (2^28)");
+
+    if (auto outputs = v.find("outputs")) {
+        for (size_t i = 0; i < outputs->size(); ++i) {
+            const JsonValue output = outputs->at(i);
+            fs::path path = resolvePath(folder, output);
+            if (!hasExtension(path, supportedImageExtensions()))
+                output.fail("'", path.filename().string(), "' is not a supported image format ",
+                            "(extensions: ", joinList(supportedImageExtensions()), ")");
+            f.outputs.push_back(std::move(path));
+        }
+    }
+    if (auto aovs = v.find("aovs")) {
+        for (size_t i = 0; i < aovs->size(); ++i) {
+            const JsonValue aov = aovs->at(i);
+            const std::string name = aov.oneOf(aovNames());
+            const AovKind kind = *aovFromName(name);
+            if (std::find(f.aovs.begin(), f.aovs.end(), kind) != f.aovs.end())
+                aov.fail("'", name, "' is listed twice");
+            f.aovs.push_back(kind);
+        }
+    }
+    if (auto exrFloat = v.find("exr_float")) f.exrFloat = exrFloat->boolean();
+    if (auto filter = v.find("filter")) {
+        if (filter->raw().is_object()) {
+            filter->requireKeys({"type", "radius"});
+            f.filter = filter->get("type").oneOf(PixelFilter::names());
+            if (auto radius = filter->find("radius")) {
+                const float r = radius->number();
+                // Beyond 16 pixels a filter is a blur, not an antialiasing filter.
+                if (!(r > 0.0f && r <= 16.0f))
+                    radius->fail("must be greater than 0 and at most 16 pixels, got ",
+                                 radius->raw().dump());
+                f.filterRadius = r;
+            }
+        } else {
+            f.filter = filter->oneOf(PixelFilter::names());
+        }
+    }
+    return f;
+}
+
+RenderDesc parseRender(const JsonValue& v) {
+    v.requireKeys({"integrator", "spp", "seed", "max_depth", "russian_roulette", "ao_distance",
+                   "ao_samples"});
+    RenderDesc r;
+    if (auto integrator = v.find("integrator"))
+        r.integrator = integrator->oneOf(integratorNames());
+    if (auto spp = v.find("spp")) r.spp = static_cast<int>(spp->integer(1, kMaxSpp));
+    if (auto seed = v.find("seed"))
+        r.seed = seed->unsignedInteger(std::numeric_limits<uint64_t>::max());
+    // Paths longer than 1024 bounces carry no measurable energy.
+    if (auto depth = v.find("max_depth")) r.maxDepth = static_cast<int>(depth->integer(0, 1024));
+    if (auto rr = v.find("russian_roulette")) r.russianRoulette = rr->boolean();
+    if (auto distance = v.find("ao_distance")) {
+        r.aoDistance = distance->number();
+        if (!(r.aoDistance >= 0.0f)) distance->fail("must be non-negative, got ", r.aoDistance);
+    }
+    if (auto samples = v.find("ao_samples")) r.aoSamples = static_cast<int>(samples->integer(1, 4096));
+    return r;
+}
+
+}  // namespace strahl::scene_detail
