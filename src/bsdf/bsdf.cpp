@@ -119,32 +119,33 @@ Bsdf Bsdf::metallicRoughness(const Color& base, float metallic, float alpha, flo
 
 // ---- Evaluation ----------------------------------------------------------------
 
-Color Bsdf::f(const Vec3& wo, const Vec3& wi) const {
+namespace {
+
+// fn(model, wo, wi) under the mirror-image rule: an opaque model sees both
+// directions flipped into the upper hemisphere, and scatters nothing (`none`)
+// when they are on opposite sides or wo lies on the horizon.
+template <typename Result, typename Fn>
+Result evaluate(const BsdfModel& bsdf, Vec3 wo, Vec3 wi, Result none, Fn&& fn) {
     return std::visit(
-        [&](const auto& model) -> Color {
-            if constexpr (!std::decay_t<decltype(model)>::kOpaque) {
-                return model.f(wo, wi);
-            } else {
-                Vec3 o = wo, i = wi;
-                if (!toUpperHemisphere(o, i)) return Color(0.0f);
-                return model.f(o, i);
+        [&](const auto& model) -> Result {
+            if constexpr (std::decay_t<decltype(model)>::kOpaque) {
+                if (!toUpperHemisphere(wo, wi)) return none;
             }
+            return fn(model, wo, wi);
         },
-        model_);
+        bsdf);
+}
+
+}  // namespace
+
+Color Bsdf::f(const Vec3& wo, const Vec3& wi) const {
+    return evaluate(model_, wo, wi, Color(0.0f),
+                    [](const auto& model, const Vec3& o, const Vec3& i) { return model.f(o, i); });
 }
 
 float Bsdf::pdf(const Vec3& wo, const Vec3& wi) const {
-    return std::visit(
-        [&](const auto& model) -> float {
-            if constexpr (!std::decay_t<decltype(model)>::kOpaque) {
-                return model.pdf(wo, wi);
-            } else {
-                Vec3 o = wo, i = wi;
-                if (!toUpperHemisphere(o, i)) return 0.0f;
-                return model.pdf(o, i);
-            }
-        },
-        model_);
+    return evaluate(model_, wo, wi, 0.0f,
+                    [](const auto& model, const Vec3& o, const Vec3& i) { return model.pdf(o, i); });
 }
 
 std::optional<BsdfSample> Bsdf::sample(const Vec3& wo, float uLobe, const Vec2& u) const {
