@@ -60,7 +60,7 @@ constexpr double kMinSeconds = 0.2;  // per case and round
 constexpr int kIcosphereLevels = 6;  // 20 * 4^6 = 81,920 triangles
 constexpr double kMajorRadius = 1.0, kMinorRadius = 0.3;
 constexpr float kTorusTiltDegrees = 50.0f;
-// The torus of implicit_builtins.cpp, factored exactly as Torus::eval writes it:
+// The torus of src/geometry/implicit_torus.cpp, factored exactly as Torus::eval writes it:
 // ρ = √(x² + y²) and z² − r² computed once (the compiler's CSE finds both).
 constexpr const char* kTorusFormula =
     "((sqrt(x^2 + y^2) - R)^2 + (z^2 - r^2)) * ((sqrt(x^2 + y^2) + R)^2 + (z^2 - r^2))";

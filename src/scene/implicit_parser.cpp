@@ -1,10 +1,12 @@
 #include "implicit_parser.h"
 
+#include <functional>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
-#include "strahl/geometry/implicit_builtins.h"
+#include "strahl/geometry/implicit_kinds.h"
 #include "strahl/geometry/implicit_csg.h"
 #include "strahl/geometry/implicit_formula.h"
 #include "transform_parser.h"
@@ -42,7 +44,52 @@ ImplicitSurfacePtr build(const JsonValue& v, Make&& make) {
     }
 }
 
+// A surface object of the scene file, as the built-in kinds read it.
+class JsonImplicitParameters final : public ImplicitParameters {
+public:
+    JsonImplicitParameters(const JsonValue& v, std::string_view type) : v_(v), type_(type) {}
+
+    std::string_view type() const override { return type_; }
+    void requireKeys(std::initializer_list<std::string_view> allowed) const override {
+        v_.requireKeys(allowed);
+    }
+    double number(std::string_view key, double fallback) const override {
+        return scene_detail::number(v_, key, fallback);
+    }
+    DVec3 vec3(std::string_view key, const DVec3& fallback) const override {
+        const auto found = v_.find(key);
+        return found ? DVec3(found->vec3()) : fallback;
+    }
+    std::unique_ptr<ImplicitParameters> child(std::string_view key) const override {
+        return std::make_unique<JsonImplicitParameters>(v_.get(key), type_);
+    }
+    size_t size() const override { return v_.size(); }
+    std::unique_ptr<ImplicitParameters> at(size_t index) const override {
+        return std::make_unique<JsonImplicitParameters>(v_.at(index), type_);
+    }
+    ImplicitSurfacePtr checked(const std::function<ImplicitSurfacePtr()>& make) const override {
+        return build(v_, make);
+    }
+
+private:
+    JsonValue v_;
+    std::string_view type_;
+};
+
 ImplicitSurfacePtr parseSurface(const JsonValue& v, int depth);
+
+// The "type" names: the built-in kinds', then the formula and the CSG operations.
+const std::vector<std::string_view>& surfaceTypes() {
+    static const std::vector<std::string_view> types = [] {
+        std::vector<std::string_view> names;
+        for (const ImplicitKind* kind : implicitKinds())
+            names.insert(names.end(), kind->names.begin(), kind->names.end());
+        names.insert(names.end(),
+                     {"formula", "union", "intersection", "difference", "smooth_union"});
+        return names;
+    }();
+    return types;
+}
 
 std::vector<ImplicitSurfacePtr> parseOperands(const JsonValue& v, int depth) {
     const JsonValue list = v.get("operands");
@@ -53,66 +100,8 @@ std::vector<ImplicitSurfacePtr> parseOperands(const JsonValue& v, int depth) {
 }
 
 ImplicitSurfacePtr parseSurfaceKind(const JsonValue& v, const std::string& type, int depth) {
-    if (type == "sphere") {
-        v.requireKeys({"type", "transform", "radius"});
-        const double r = number(v, "radius", 1.0);
-        return build(v, [&] { return makeImplicitSphere(r); });
-    }
-    if (type == "quadric") {
-        v.requireKeys({"type", "transform", "coefficients"});
-        const JsonValue c = v.get("coefficients");
-        c.requireKeys({"xx", "yy", "zz", "xy", "yz", "xz", "x", "y", "z", "c"});
-        QuadricCoefficients q;
-        q.xx = number(c, "xx", 0.0);
-        q.yy = number(c, "yy", 0.0);
-        q.zz = number(c, "zz", 0.0);
-        q.xy = number(c, "xy", 0.0);
-        q.yz = number(c, "yz", 0.0);
-        q.xz = number(c, "xz", 0.0);
-        q.x = number(c, "x", 0.0);
-        q.y = number(c, "y", 0.0);
-        q.z = number(c, "z", 0.0);
-        q.c = number(c, "c", 0.0);
-        return build(v, [&] { return makeImplicitQuadric(q); });
-    }
-    if (type == "torus") {
-        v.requireKeys({"type", "transform", "major_radius", "minor_radius"});
-        const double R = number(v, "major_radius", 1.0), r = number(v, "minor_radius", 0.25);
-        return build(v, [&] { return makeImplicitTorus(R, r); });
-    }
-    if (type == "superellipsoid") {
-        v.requireKeys({"type", "transform", "radii", "e1", "e2"});
-        const auto radii = v.find("radii");
-        const DVec3 r = radii ? DVec3(radii->vec3()) : DVec3(1.0);
-        const double e1 = number(v, "e1", 1.0), e2 = number(v, "e2", 1.0);
-        return build(v, [&] { return makeSuperellipsoid(r, e1, e2); });
-    }
-    if (type == "blobs") {
-        v.requireKeys({"type", "transform", "threshold", "blobs"});
-        const JsonValue list = v.get("blobs");
-        std::vector<Blob> blobs;
-        for (size_t i = 0; i < list.size(); ++i) {
-            const JsonValue b = list.at(i);
-            b.requireKeys({"center", "radius", "strength"});
-            Blob blob;
-            if (auto c = b.find("center")) blob.center = DVec3(c->vec3());
-            blob.radius = number(b, "radius", 1.0);
-            blob.strength = number(b, "strength", 1.0);
-            blobs.push_back(blob);
-        }
-        const double threshold = number(v, "threshold", 0.5);
-        return build(v, [&] { return makeBlobs(std::move(blobs), threshold); });
-    }
-    if (type == "gyroid" || type == "schwarz_p" || type == "schwarz_d" || type == "neovius") {
-        v.requireKeys({"type", "transform", "period", "level", "thickness"});
-        const PeriodicSurface kind = type == "gyroid"      ? PeriodicSurface::Gyroid
-                                     : type == "schwarz_p" ? PeriodicSurface::SchwarzP
-                                     : type == "schwarz_d" ? PeriodicSurface::SchwarzD
-                                                           : PeriodicSurface::Neovius;
-        const double period = number(v, "period", 1.0), level = number(v, "level", 0.0);
-        const double thickness = number(v, "thickness", 0.0);
-        return build(v, [&] { return makePeriodicSurface(kind, period, level, thickness); });
-    }
+    if (const ImplicitKind* kind = findImplicitKind(type))
+        return kind->parse(JsonImplicitParameters(v, type));
     if (type == "formula") {
         v.requireKeys({"type", "transform", "f", "parameters"});
         std::map<std::string, double> parameters;
@@ -145,10 +134,7 @@ ImplicitSurfacePtr parseSurfaceKind(const JsonValue& v, const std::string& type,
 ImplicitSurfacePtr parseSurface(const JsonValue& v, int depth) {
     if (depth > kMaxCsgDepth) v.fail("CSG nested deeper than ", kMaxCsgDepth, " levels");
     if (!v.raw().is_object()) v.fail("expected a surface object, got ", v.describe());
-    const std::string type = v.get("type").oneOf(
-        {"sphere", "quadric", "torus", "superellipsoid", "blobs", "gyroid", "schwarz_p",
-         "schwarz_d", "neovius", "formula", "union", "intersection", "difference",
-         "smooth_union"});
+    const std::string type = v.get("type").oneOf(surfaceTypes());
     ImplicitSurfacePtr surface = parseSurfaceKind(v, type, depth);
     if (auto transform = v.find("transform")) {
         const Mat4 placement = parseTransform(*transform);
