@@ -79,7 +79,7 @@ ImplicitSurfacePtr makeBlobs(std::vector<Blob> blobs, double threshold) {
 
 namespace {
 
-ImplicitSurfacePtr parse(const ImplicitParameters& p) {
+ImplicitSurfacePtr parse(const SurfaceParameters& p) {
     p.requireKeys({"type", "transform", "threshold", "blobs"});
     const auto list = p.child("blobs");
     std::vector<Blob> blobs;

@@ -106,7 +106,7 @@ ImplicitSurfacePtr makePeriodicSurface(PeriodicSurface kind, double period, doub
 
 namespace {
 
-ImplicitSurfacePtr parse(const ImplicitParameters& p) {
+ImplicitSurfacePtr parse(const SurfaceParameters& p) {
     p.requireKeys({"type", "transform", "period", "level", "thickness"});
     const std::string_view type = p.type();
     const PeriodicSurface kind = type == "gyroid"      ? PeriodicSurface::Gyroid

@@ -64,7 +64,7 @@ ImplicitSurfacePtr makeImplicitQuadric(const QuadricCoefficients& q) {
 
 namespace {
 
-ImplicitSurfacePtr parse(const ImplicitParameters& p) {
+ImplicitSurfacePtr parse(const SurfaceParameters& p) {
     p.requireKeys({"type", "transform", "coefficients"});
     const auto c = p.child("coefficients");
     c->requireKeys({"xx", "yy", "zz", "xy", "yz", "xz", "x", "y", "z", "c"});

@@ -55,7 +55,7 @@ ImplicitSurfacePtr makeImplicitSphere(double radius) {
 
 namespace {
 
-ImplicitSurfacePtr parse(const ImplicitParameters& p) {
+ImplicitSurfacePtr parse(const SurfaceParameters& p) {
     p.requireKeys({"type", "transform", "radius"});
     const double r = p.number("radius", 1.0);
     return p.checked([&] { return makeImplicitSphere(r); });

@@ -68,7 +68,7 @@ ImplicitSurfacePtr makeSuperellipsoid(const DVec3& radii, double e1, double e2) 
 
 namespace {
 
-ImplicitSurfacePtr parse(const ImplicitParameters& p) {
+ImplicitSurfacePtr parse(const SurfaceParameters& p) {
     p.requireKeys({"type", "transform", "radii", "e1", "e2"});
     const DVec3 r = p.vec3("radii", DVec3(1.0));
     const double e1 = p.number("e1", 1.0), e2 = p.number("e2", 1.0);

@@ -61,7 +61,7 @@ ImplicitSurfacePtr makeImplicitTorus(double majorRadius, double minorRadius) {
 
 namespace {
 
-ImplicitSurfacePtr parse(const ImplicitParameters& p) {
+ImplicitSurfacePtr parse(const SurfaceParameters& p) {
     p.requireKeys({"type", "transform", "major_radius", "minor_radius"});
     const double R = p.number("major_radius", 1.0), r = p.number("minor_radius", 0.25);
     return p.checked([&] { return makeImplicitTorus(R, r); });

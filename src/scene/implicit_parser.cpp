@@ -45,7 +45,7 @@ ImplicitSurfacePtr build(const JsonValue& v, Make&& make) {
 }
 
 // A surface object of the scene file, as the built-in kinds read it.
-class JsonImplicitParameters final : public ImplicitParameters {
+class JsonImplicitParameters final : public SurfaceParameters {
 public:
     JsonImplicitParameters(const JsonValue& v, std::string_view type) : v_(v), type_(type) {}
 
@@ -60,18 +60,17 @@ public:
         const auto found = v_.find(key);
         return found ? DVec3(found->vec3()) : fallback;
     }
-    std::unique_ptr<ImplicitParameters> child(std::string_view key) const override {
+    std::unique_ptr<SurfaceParameters> child(std::string_view key) const override {
         return std::make_unique<JsonImplicitParameters>(v_.get(key), type_);
     }
     size_t size() const override { return v_.size(); }
-    std::unique_ptr<ImplicitParameters> at(size_t index) const override {
+    std::unique_ptr<SurfaceParameters> at(size_t index) const override {
         return std::make_unique<JsonImplicitParameters>(v_.at(index), type_);
-    }
-    ImplicitSurfacePtr checked(const std::function<ImplicitSurfacePtr()>& make) const override {
-        return build(v_, make);
     }
 
 private:
+    void throwAtPlace(const std::string& message) const override { v_.fail(message); }
+
     JsonValue v_;
     std::string_view type_;
 };

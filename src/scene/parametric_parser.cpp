@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <map>
+#include <memory>
+#include <string_view>
 #include <string>
 #include <vector>
 
@@ -9,7 +11,7 @@
 #include "strahl/geometry/bezier_patches.h"
 #include "strahl/geometry/formula.h"
 #include "strahl/geometry/height_field.h"
-#include "strahl/geometry/parametric_builtins.h"
+#include "strahl/geometry/parametric_kinds.h"
 #include "strahl/geometry/parametric_formula.h"
 #include "strahl/geometry/revolution_surface.h"
 #include "strahl/meshio/bezier_file.h"
@@ -76,6 +78,50 @@ void parseRange(const JsonValue& v, const std::map<std::string, double>& paramet
     if (!(lo < hi)) v.fail("the domain is empty or inverted: [", lo, ", ", hi, "]");
 }
 
+// A surface object of the scene file, as the built-in kinds read it: numbers
+// in double precision, or constant formulas (exactNumber).
+class JsonParametricParameters final : public SurfaceParameters {
+public:
+    JsonParametricParameters(const JsonValue& v, std::string_view type) : v_(v), type_(type) {}
+
+    std::string_view type() const override { return type_; }
+    void requireKeys(std::initializer_list<std::string_view> allowed) const override {
+        v_.requireKeys(allowed);
+    }
+    double number(std::string_view key, double fallback) const override {
+        return scene_detail::number(v_, key, fallback);
+    }
+    DVec3 vec3(std::string_view key, const DVec3& fallback) const override {
+        const auto found = v_.find(key);
+        return found ? DVec3(found->vec3()) : fallback;
+    }
+    std::unique_ptr<SurfaceParameters> child(std::string_view key) const override {
+        return std::make_unique<JsonParametricParameters>(v_.get(key), type_);
+    }
+    size_t size() const override { return v_.size(); }
+    std::unique_ptr<SurfaceParameters> at(size_t index) const override {
+        return std::make_unique<JsonParametricParameters>(v_.at(index), type_);
+    }
+
+private:
+    void throwAtPlace(const std::string& message) const override { v_.fail(message); }
+
+    JsonValue v_;
+    std::string_view type_;
+};
+
+// The "type" names: the built-in kinds', then the surfaces built here.
+const std::vector<std::string_view>& surfaceTypes() {
+    static const std::vector<std::string_view> types = [] {
+        std::vector<std::string_view> names;
+        for (const ParametricKind* kind : parametricKinds())
+            names.insert(names.end(), kind->names.begin(), kind->names.end());
+        names.insert(names.end(), {"revolution", "bezier", "heightfield", "formula"});
+        return names;
+    }();
+    return types;
+}
+
 ParametricSurfacePtr parseFormula(const JsonValue& v) {
     v.requireKeys({"type", "x", "y", "z", "u", "v", "periodic_u", "periodic_v", "twisted_u",
                    "parameters"});
@@ -95,34 +141,9 @@ ParametricSurfacePtr parseFormula(const JsonValue& v) {
 
 ParametricSurfacePtr parseSurface(const JsonValue& v, const std::filesystem::path& folder) {
     if (!v.raw().is_object()) v.fail("expected a surface object, got ", v.describe());
-    const std::string type = v.get("type").oneOf({"sphere", "torus", "cylinder", "cone", "mobius",
-                                                  "revolution", "bezier", "heightfield", "formula"});
-    if (type == "sphere") {
-        v.requireKeys({"type", "radius"});
-        const double r = number(v, "radius", 1.0);
-        return build(v, [&] { return makeParametricSphere(r); });
-    }
-    if (type == "torus") {
-        v.requireKeys({"type", "major_radius", "minor_radius"});
-        const double R = number(v, "major_radius", 1.0), r = number(v, "minor_radius", 0.25);
-        return build(v, [&] { return makeParametricTorus(R, r); });
-    }
-    if (type == "cylinder") {
-        v.requireKeys({"type", "radius", "z_min", "z_max"});
-        const double r = number(v, "radius", 1.0), z0 = number(v, "z_min", -1.0),
-                     z1 = number(v, "z_max", 1.0);
-        return build(v, [&] { return makeParametricCylinder(r, z0, z1); });
-    }
-    if (type == "cone") {
-        v.requireKeys({"type", "radius", "height"});
-        const double r = number(v, "radius", 1.0), h = number(v, "height", 1.0);
-        return build(v, [&] { return makeParametricCone(r, h); });
-    }
-    if (type == "mobius") {
-        v.requireKeys({"type", "radius", "half_width"});
-        const double R = number(v, "radius", 1.0), w = number(v, "half_width", 0.3);
-        return build(v, [&] { return makeMobiusStrip(R, w); });
-    }
+    const std::string type = v.get("type").oneOf(surfaceTypes());
+    if (const ParametricKind* kind = findParametricKind(type))
+        return kind->parse(JsonParametricParameters(v, type));
     if (type == "revolution") {
         v.requireKeys({"type", "profile"});
         const JsonValue list = v.get("profile");

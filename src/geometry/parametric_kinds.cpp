@@ -1,0 +1,35 @@
+// The list of built-in parametric kinds (parametric_kinds.h). A new kind: its
+// file src/geometry/parametric_<kind>.cpp defines
+// `const ParametricKind kParametric<Kind>` and one line below names it.
+
+#include "strahl/geometry/parametric_kinds.h"
+
+namespace strahl {
+
+extern const ParametricKind kParametricSphere, kParametricTorus, kParametricCylinder,
+    kParametricCone, kParametricMobius;
+
+namespace {
+
+const ParametricKind* const kKinds[] = {
+    &kParametricSphere,    //
+    &kParametricTorus,     //
+    &kParametricCylinder,  //
+    &kParametricCone,      //
+    &kParametricMobius,    //
+};
+
+}  // namespace
+
+std::span<const ParametricKind* const> parametricKinds() {
+    return kKinds;
+}
+
+const ParametricKind* findParametricKind(std::string_view name) {
+    for (const ParametricKind* kind : kKinds)
+        for (std::string_view n : kind->names)
+            if (n == name) return kind;
+    return nullptr;
+}
+
+}  // namespace strahl
