@@ -32,7 +32,7 @@ struct RenderOptions {
     uint64_t seed = 0;
     PacketMode packets = PacketMode::Auto;
     PixelFilter filter = PixelFilter::box();  // where samples land around pixel centres
-    ProgressReporter* progress = nullptr;
+    ProgressSink* progress = nullptr;
     // Set (from a signal handler, say) to stop: tiles in flight finish, the
     // rest are skipped, and renderImage returns with `cancelled` set.
     const std::atomic<bool>* cancel = nullptr;

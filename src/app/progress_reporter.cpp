@@ -1,4 +1,4 @@
-#include "strahl/render/progress.h"
+#include "progress_reporter.h"
 
 #include <unistd.h>
 
@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
-namespace strahl {
+namespace strahl::app {
 
 namespace {
 // Bars redraw at most 10 times a second; plain lines appear at each 10% step
@@ -167,4 +167,4 @@ void ProgressReporter::print(double fraction, bool final) {
     std::fflush(stderr);
 }
 
-}  // namespace strahl
+}  // namespace strahl::app
