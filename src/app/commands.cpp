@@ -261,8 +261,9 @@ int renderScene(const Options& given, ProgressReporter& progress) {
     if (o.stats && !worker) checkStatsPath(*o.stats);
     // The sample offset decides the pixels too: regions of different sample
     // ranges must not be assembled, nor one skipped for the other.
+    const std::string image = imageFingerprint(document);
     const std::string sceneFingerprint =
-        imageFingerprint(document) +
+        image +
         (o.sampleOffset ? ", samples from " + std::to_string(*o.sampleOffset) : std::string());
     // Before anything heavy is loaded: only the scene file has been read.
     if (o.skipExisting && !worker && outputsComplete(o, desc, crop, sceneFingerprint, progress))
@@ -314,7 +315,7 @@ int renderScene(const Options& given, ProgressReporter& progress) {
         progress.passDone(1);
         stats.seconds = rasterStats.seconds;
     } else {
-        const std::string fingerprint = renderFingerprint(o, document, crop);
+        const std::string fingerprint = renderFingerprint(o, image, crop);
         if (o.resume) {
             readCheckpoint(film, *o.resume, fingerprint);
             if (!o.quiet)

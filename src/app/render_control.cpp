@@ -47,10 +47,10 @@ std::string signalName(int signal) {
     return "signal " + std::to_string(signal);
 }
 
-std::string renderFingerprint(const Options& o, const SceneDocument& document,
+std::string renderFingerprint(const Options& o, const std::string& imageFingerprint,
                               const PixelRect& crop) {
     std::ostringstream f;
-    f << imageFingerprint(document) << ", crop " << crop.x0 << "," << crop.y0 << "," << crop.x1
+    f << imageFingerprint << ", crop " << crop.x0 << "," << crop.y0 << "," << crop.x1
       << "," << crop.y1 << ", tile " << o.tileSize;
     if (o.sampleOffset) f << ", samples from " << *o.sampleOffset;
     return f.str();

@@ -34,10 +34,10 @@ private:
 std::string signalName(int signal);
 
 // Everything that decides the rendered image, as one line: a checkpoint made
-// with one fingerprint can only be resumed by a render with the same one. The
-// image fingerprint plus what is not in the scene document: the crop, the
-// tile size and the first sample index.
-std::string renderFingerprint(const Options& options, const SceneDocument& document,
+// with one fingerprint can only be resumed by a render with the same one: the
+// image fingerprint (imageFingerprint below) plus what is not in the scene
+// document: the crop, the tile size and the first sample index.
+std::string renderFingerprint(const Options& options, const std::string& imageFingerprint,
                               const PixelRect& crop);
 
 // What decides the pixel values of the image, whatever part of it is

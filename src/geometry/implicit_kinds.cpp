@@ -27,10 +27,7 @@ std::span<const ImplicitKind* const> implicitKinds() {
 }
 
 const ImplicitKind* findImplicitKind(std::string_view name) {
-    for (const ImplicitKind* kind : kKinds)
-        for (std::string_view n : kind->names)
-            if (n == name) return kind;
-    return nullptr;
+    return findKindNamed(implicitKinds(), name);
 }
 
 }  // namespace strahl

@@ -26,10 +26,7 @@ std::span<const ParametricKind* const> parametricKinds() {
 }
 
 const ParametricKind* findParametricKind(std::string_view name) {
-    for (const ParametricKind* kind : kKinds)
-        for (std::string_view n : kind->names)
-            if (n == name) return kind;
-    return nullptr;
+    return findKindNamed(parametricKinds(), name);
 }
 
 }  // namespace strahl

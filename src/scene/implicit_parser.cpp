@@ -1,11 +1,11 @@
 #include "implicit_parser.h"
 
-#include <functional>
 #include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "json_surface_parameters.h"
 #include "strahl/geometry/implicit_kinds.h"
 #include "strahl/geometry/implicit_csg.h"
 #include "strahl/geometry/implicit_formula.h"
@@ -44,49 +44,13 @@ ImplicitSurfacePtr build(const JsonValue& v, Make&& make) {
     }
 }
 
-// A surface object of the scene file, as the built-in kinds read it.
-class JsonImplicitParameters final : public SurfaceParameters {
-public:
-    JsonImplicitParameters(const JsonValue& v, std::string_view type) : v_(v), type_(type) {}
-
-    std::string_view type() const override { return type_; }
-    void requireKeys(std::initializer_list<std::string_view> allowed) const override {
-        v_.requireKeys(allowed);
-    }
-    double number(std::string_view key, double fallback) const override {
-        return scene_detail::number(v_, key, fallback);
-    }
-    DVec3 vec3(std::string_view key, const DVec3& fallback) const override {
-        const auto found = v_.find(key);
-        return found ? DVec3(found->vec3()) : fallback;
-    }
-    std::unique_ptr<SurfaceParameters> child(std::string_view key) const override {
-        return std::make_unique<JsonImplicitParameters>(v_.get(key), type_);
-    }
-    size_t size() const override { return v_.size(); }
-    std::unique_ptr<SurfaceParameters> at(size_t index) const override {
-        return std::make_unique<JsonImplicitParameters>(v_.at(index), type_);
-    }
-
-private:
-    void throwAtPlace(const std::string& message) const override { v_.fail(message); }
-
-    JsonValue v_;
-    std::string_view type_;
-};
 
 ImplicitSurfacePtr parseSurface(const JsonValue& v, int depth);
 
 // The "type" names: the built-in kinds', then the formula and the CSG operations.
 const std::vector<std::string_view>& surfaceTypes() {
-    static const std::vector<std::string_view> types = [] {
-        std::vector<std::string_view> names;
-        for (const ImplicitKind* kind : implicitKinds())
-            names.insert(names.end(), kind->names.begin(), kind->names.end());
-        names.insert(names.end(),
-                     {"formula", "union", "intersection", "difference", "smooth_union"});
-        return names;
-    }();
+    static const std::vector<std::string_view> types = kindNamesThen(
+        implicitKinds(), {"formula", "union", "intersection", "difference", "smooth_union"});
     return types;
 }
 
@@ -100,7 +64,7 @@ std::vector<ImplicitSurfacePtr> parseOperands(const JsonValue& v, int depth) {
 
 ImplicitSurfacePtr parseSurfaceKind(const JsonValue& v, const std::string& type, int depth) {
     if (const ImplicitKind* kind = findImplicitKind(type))
-        return kind->parse(JsonImplicitParameters(v, type));
+        return kind->parse(JsonSurfaceParameters(v, type, &number));
     if (type == "formula") {
         v.requireKeys({"type", "transform", "f", "parameters"});
         std::map<std::string, double> parameters;

@@ -25,6 +25,19 @@ namespace strahl::scene_detail {
 // "<label>:LINE:COLUMN: syntax error: <reason>" (1-based) on malformed text.
 nlohmann::json parseJsonText(const std::string& text, const std::string& label);
 
+// The error of a value in the document: the message, and the JSON pointer
+// it names ("" for the top level), so callers can tell where it is without
+// reading the message (SceneDocument names the command-line patches there).
+class JsonError : public Error {
+public:
+    JsonError(const std::string& message, std::string pointer)
+        : Error(message), pointer_(std::move(pointer)) {}
+    const std::string& pointer() const { return pointer_; }
+
+private:
+    std::string pointer_;
+};
+
 // A value inside a parsed document together with its JSON pointer. Cheap to
 // copy; refers to the document and the label, which must outlive it.
 class JsonValue {
@@ -35,10 +48,10 @@ public:
     const std::string& pointer() const { return pointer_; }
     const nlohmann::json& raw() const { return *value_; }
 
-    // Throws strahl::Error "<label>: <pointer>: <pieces...>".
+    // Throws JsonError "<label>: <pointer>: <pieces...>".
     template <typename... Args>
     [[noreturn]] void fail(const Args&... args) const {
-        strahl::fail(*label_, ": ", where(), ": ", args...);
+        throw JsonError(concat(*label_, ": ", where(), ": ", args...), pointer_);
     }
 
     // --- objects -------------------------------------------------------------

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "height_image.h"
+#include "json_surface_parameters.h"
 #include "strahl/geometry/bezier_patches.h"
 #include "strahl/geometry/formula.h"
 #include "strahl/geometry/height_field.h"
@@ -78,47 +79,11 @@ void parseRange(const JsonValue& v, const std::map<std::string, double>& paramet
     if (!(lo < hi)) v.fail("the domain is empty or inverted: [", lo, ", ", hi, "]");
 }
 
-// A surface object of the scene file, as the built-in kinds read it: numbers
-// in double precision, or constant formulas (exactNumber).
-class JsonParametricParameters final : public SurfaceParameters {
-public:
-    JsonParametricParameters(const JsonValue& v, std::string_view type) : v_(v), type_(type) {}
-
-    std::string_view type() const override { return type_; }
-    void requireKeys(std::initializer_list<std::string_view> allowed) const override {
-        v_.requireKeys(allowed);
-    }
-    double number(std::string_view key, double fallback) const override {
-        return scene_detail::number(v_, key, fallback);
-    }
-    DVec3 vec3(std::string_view key, const DVec3& fallback) const override {
-        const auto found = v_.find(key);
-        return found ? DVec3(found->vec3()) : fallback;
-    }
-    std::unique_ptr<SurfaceParameters> child(std::string_view key) const override {
-        return std::make_unique<JsonParametricParameters>(v_.get(key), type_);
-    }
-    size_t size() const override { return v_.size(); }
-    std::unique_ptr<SurfaceParameters> at(size_t index) const override {
-        return std::make_unique<JsonParametricParameters>(v_.at(index), type_);
-    }
-
-private:
-    void throwAtPlace(const std::string& message) const override { v_.fail(message); }
-
-    JsonValue v_;
-    std::string_view type_;
-};
 
 // The "type" names: the built-in kinds', then the surfaces built here.
 const std::vector<std::string_view>& surfaceTypes() {
-    static const std::vector<std::string_view> types = [] {
-        std::vector<std::string_view> names;
-        for (const ParametricKind* kind : parametricKinds())
-            names.insert(names.end(), kind->names.begin(), kind->names.end());
-        names.insert(names.end(), {"revolution", "bezier", "heightfield", "formula"});
-        return names;
-    }();
+    static const std::vector<std::string_view> types =
+        kindNamesThen(parametricKinds(), {"revolution", "bezier", "heightfield", "formula"});
     return types;
 }
 
@@ -143,7 +108,7 @@ ParametricSurfacePtr parseSurface(const JsonValue& v, const std::filesystem::pat
     if (!v.raw().is_object()) v.fail("expected a surface object, got ", v.describe());
     const std::string type = v.get("type").oneOf(surfaceTypes());
     if (const ParametricKind* kind = findParametricKind(type))
-        return kind->parse(JsonParametricParameters(v, type));
+        return kind->parse(JsonSurfaceParameters(v, type, &number));
     if (type == "revolution") {
         v.requireKeys({"type", "profile"});
         const JsonValue list = v.get("profile");

@@ -166,20 +166,15 @@ const fs::path& SceneDocument::file() const { return impl_->file; }
 SceneDesc SceneDocument::parse() const {
     try {
         return scene_detail::parseSceneJson(impl_->document, impl_->file, impl_->label);
-    } catch (const Error& e) {
-        if (impl_->patches.empty()) throw;
-        // "<label>: <pointer>: ..." names the place; patches there, inside it
-        // or above it are what the user may have to change.
-        const std::string message = e.what();
-        const std::string prefix = impl_->label + ": /";
-        if (!startsWith(message, prefix)) throw;
-        const size_t end = message.find(": ", prefix.size());
-        const std::string where = message.substr(prefix.size() - 1, end - (prefix.size() - 1));
+    } catch (const scene_detail::JsonError& e) {
+        // Patches at the error's place, inside it or above it are what the
+        // user may have to change.
         std::string origins;
         for (const ScenePatch& p : impl_->patches)
-            if (related(p.pointer, where)) origins += (origins.empty() ? "" : ", ") + p.origin;
+            if (!e.pointer().empty() && related(p.pointer, e.pointer()))
+                origins += (origins.empty() ? "" : ", ") + p.origin;
         if (origins.empty()) throw;
-        fail(message, " (set by ", origins, ")");
+        fail(e.what(), " (set by ", origins, ")");
     }
 }
 

@@ -15,10 +15,7 @@
 
 namespace strahl {
 
-struct ImplicitKind {
-    std::span<const std::string_view> names;  // the "type" values it answers to
-    ImplicitSurfacePtr (*parse)(const SurfaceParameters& parameters);
-};
+using ImplicitKind = SurfaceKind<ImplicitSurfacePtr>;
 
 // Every built-in kind, in the order `type` errors list their names.
 std::span<const ImplicitKind* const> implicitKinds();

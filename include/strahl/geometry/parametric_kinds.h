@@ -15,10 +15,7 @@
 
 namespace strahl {
 
-struct ParametricKind {
-    std::span<const std::string_view> names;  // the "type" values it answers to
-    ParametricSurfacePtr (*parse)(const SurfaceParameters& parameters);
-};
+using ParametricKind = SurfaceKind<ParametricSurfacePtr>;
 
 // Every built-in kind, in the order `type` errors list their names.
 std::span<const ParametricKind* const> parametricKinds();

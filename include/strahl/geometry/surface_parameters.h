@@ -7,8 +7,10 @@
 
 #include <initializer_list>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "strahl/core/error.h"
 #include "strahl/core/math.h"
@@ -53,5 +55,32 @@ protected:
     // Throws strahl::Error "<file>: <place>: <message>".
     virtual void throwAtPlace(const std::string& message) const = 0;
 };
+
+// One built-in kind of a surface family (implicit_kinds.h, parametric_kinds.h):
+// the "type" values it answers to and how it reads its parameters.
+template <typename SurfacePtr>
+struct SurfaceKind {
+    std::span<const std::string_view> names;
+    SurfacePtr (*parse)(const SurfaceParameters& parameters);
+};
+
+// The kind of `kinds` answering to `name`, or null.
+template <typename Kind>
+const Kind* findKindNamed(std::span<const Kind* const> kinds, std::string_view name) {
+    for (const Kind* kind : kinds)
+        for (std::string_view n : kind->names)
+            if (n == name) return kind;
+    return nullptr;
+}
+
+// Every name of `kinds`, in order, then `more` (the types a parser builds itself).
+template <typename Kind>
+std::vector<std::string_view> kindNamesThen(std::span<const Kind* const> kinds,
+                                            std::initializer_list<std::string_view> more) {
+    std::vector<std::string_view> names;
+    for (const Kind* kind : kinds) names.insert(names.end(), kind->names.begin(), kind->names.end());
+    names.insert(names.end(), more);
+    return names;
+}
 
 }  // namespace strahl
