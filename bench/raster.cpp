@@ -69,7 +69,7 @@ void BM_RaytraceEyelight(benchmark::State& state) {
 void BM_RasterEyelight(benchmark::State& state) {
     Fixture& f = fixture();
     const auto integrator = makeIntegrator("eyelight", f.world);
-    RasterOptions options;
+    RenderOptions options;
     options.tileSize = kTile;
     for (auto _ : state) {
         Film film(kSize, kSize, PixelRect{0, 0, kSize, kSize}, {});
@@ -83,7 +83,7 @@ void printAgreement(const Fixture& f) {
     RasterStats stats;
     const PixelRect image{0, 0, kSize, kSize};
     const std::vector<Hit> raster =
-        rasterizeHits(f.world, f.camera, image, RasterOptions{}, &stats);
+        rasterizeHits(f.world, f.camera, image, RenderOptions{}, &stats);
     const TileRayGenerator rays(f.camera, 0, 1);
     size_t same = 0;
     for (int y = 0; y < kSize; ++y)

@@ -1,7 +1,8 @@
 #pragma once
-// The render and info commands of the CLI (commands.cpp, info_command.cpp;
-// merge, assemble and bench have their own headers); each returns the process exit status and throws
-// strahl::Error for anything the user must fix.
+// The render and info commands of the CLI (render_command.cpp,
+// info_command.cpp; merge, assemble and bench have their own headers); each
+// returns the process exit status and throws strahl::Error for anything the
+// user must fix.
 
 #include "options.h"
 

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <iostream>
 
-#include "frame_pattern.h"
+#include "strahl/job/frame_pattern.h"
 #include "strahl/core/error.h"
 #include "strahl/core/process_memory.h"
 #include "strahl/film/film.h"

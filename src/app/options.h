@@ -1,6 +1,7 @@
 #pragma once
 // The command line of strahl: the usage text and the Options it fills. No
-// rendering logic lives here (that is commands.cpp and the library).
+// rendering logic lives here (render_command.cpp turns Options into a
+// RenderJob, which the library runs).
 
 #include <cstdint>
 #include <optional>

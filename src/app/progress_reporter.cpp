@@ -23,7 +23,8 @@ constexpr int kBarWidth = 40;
 double roundSeconds(double seconds) { return std::round(seconds * 1000.0) / 1000.0; }
 }  // namespace
 
-ProgressReporter::ProgressReporter(Style style) : style_(style), created_(Clock::now()) {
+ProgressReporter::ProgressReporter(Style style, bool quiet)
+    : style_(style), quiet_(quiet), created_(Clock::now()) {
     start_ = lastPrint_ = created_;
 }
 
@@ -47,7 +48,7 @@ void ProgressReporter::advance(uint64_t amount) {
     maybePrint();
 }
 
-void ProgressReporter::setFraction(double fraction) {
+void ProgressReporter::fraction(double fraction) {
     fraction_.store(fraction, std::memory_order_relaxed);
     maybePrint();
 }
@@ -63,7 +64,7 @@ void ProgressReporter::end() {
         print(1.0, true);
 }
 
-void ProgressReporter::setPasses(int done, int total) {
+void ProgressReporter::passes(int done, int total) {
     passesDone_ = done;
     passesTotal_ = total;
 }
@@ -73,6 +74,37 @@ void ProgressReporter::passDone(int done) {
     if (style_ != Style::Json) return;
     std::lock_guard lock(printMutex_);
     printJson("pass", currentFraction(), false);
+}
+
+void ProgressReporter::started(const Start& start) {
+    event("start", {{"scene", start.scene},
+                    {"frame", start.frame ? nlohmann::ordered_json(*start.frame)
+                                          : nlohmann::ordered_json(nullptr)},
+                    {"resolution", {start.width, start.height}},
+                    {"region", {start.region.x0, start.region.y0, start.region.x1, start.region.y1}},
+                    {"spp", start.spp},
+                    {"outputs", start.outputs}});
+}
+
+void ProgressReporter::skipped(const std::vector<std::string>& outputs) {
+    event("skipped", {{"outputs", outputs}, {"exit_status", 0}});
+}
+
+void ProgressReporter::note(const std::string& line) {
+    if (!quiet_) std::fprintf(stderr, "%s\n", line.c_str());
+}
+
+void ProgressReporter::finished(const RunReport& report) {
+    using Json = nlohmann::ordered_json;
+    event(report.stopped.empty() ? "done" : "interrupted",
+          {{"status", runStatus(report)},
+           {"stopped", report.stopped.empty() ? Json(nullptr) : Json(report.stopped)},
+           {"partial", !report.stopped.empty()},
+           {"passes_done", report.samplesDone},
+           {"passes_total", report.spp},
+           {"outputs", report.outputs},
+           {"stats", report.statsFile.empty() ? Json(nullptr) : Json(report.statsFile)},
+           {"exit_status", report.exitStatus}});
 }
 
 void ProgressReporter::event(const std::string& name, const nlohmann::ordered_json& fields) {

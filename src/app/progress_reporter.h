@@ -1,13 +1,15 @@
 #pragma once
-// The CLI's progress display for the long phases (BVH build, render), the
-// ProgressSink the renderer reports to.
+// The CLI's display of a render job (the JobObserver `strahl render` gives
+// runRenderJob): the progress of the long phases (BVH build, render) and the
+// job's events and log lines.
 //   Bar:   a redrawn single-line bar with percentage and ETA on stderr, for terminals.
 //   Lines: a plain line on stderr every 10% (and at least every 10 s), for logs and CI.
 //   Json:  one JSON object per line on stdout, for farm managers and scripts
 //          (the format is in docs/cli.md#progress-as-json): the phases' progress
 //          (at most one line a second), every finished sample pass, and the
-//          run's events (start, done, ...) that the caller reports through event().
+//          run's events (start, skipped, done, interrupted, error).
 //   Quiet: nothing.
+// The job's log lines ("wrote out.exr") go to stderr unless --quiet.
 // advance()/setFraction() are thread-safe and cheap: printing is rate-limited
 // and done by whichever thread gets the print lock, never waited for.
 
@@ -17,28 +19,36 @@
 #include <mutex>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
+#include <vector>
 
-#include "strahl/render/progress.h"
+#include "strahl/job/render_job.h"
 
 namespace strahl::app {
 
-class ProgressReporter final : public ProgressSink {
+class ProgressReporter final : public JobObserver {
 public:
     enum class Style { Bar, Lines, Json, Quiet };
 
-    explicit ProgressReporter(Style style);
+    // `quiet`: no log lines (--quiet), whatever the style.
+    ProgressReporter(Style style, bool quiet);
     // Bar if stderr is a terminal, Lines otherwise, Quiet if quiet.
     static Style defaultStyle(bool quiet);
 
     void begin(const std::string& phase, uint64_t total) override;
     void advance(uint64_t amount) override;
-    void setFraction(double fraction);  // for phases measured as a fraction
+    void fraction(double fraction) override;  // for phases measured as a fraction
     void end() override;
 
     // The render's sample passes: `done` of `total` samples per pixel. JSON
     // lines carry them; passDone() prints a "pass" line for each finished pass.
-    void setPasses(int done, int total);
-    void passDone(int done);
+    void passes(int done, int total) override;
+    void passDone(int done) override;
+
+    // The job's events, as JSON lines; note() prints its line on stderr.
+    void started(const Start& start) override;
+    void skipped(const std::vector<std::string>& outputs) override;
+    void note(const std::string& line) override;
+    void finished(const RunReport& report) override;
 
     // Json: prints {"event": name, "elapsed": seconds since construction,
     // ...fields} as one line and flushes; the other styles print nothing.
@@ -53,6 +63,7 @@ private:
 
     using Clock = std::chrono::steady_clock;
     Style style_;
+    bool quiet_;
     std::string phase_;
     uint64_t total_ = 1;
     std::atomic<uint64_t> done_{0};

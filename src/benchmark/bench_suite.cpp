@@ -265,7 +265,7 @@ BenchRow runBenchScene(const BenchSceneSpec& spec, const BenchOptions& options,
         if (options.raster) {
             say("rasterizing");
             const auto integrator = makeIntegrator("eyelight", world);
-            RasterOptions raster;
+            RenderOptions raster;
             raster.threads = options.threads;
             row.rasterSeconds = bestOf(options.repeats, [&] {
                 Film film(res, res, PixelRect{0, 0, res, res}, {});

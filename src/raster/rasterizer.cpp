@@ -289,14 +289,14 @@ void rasterizeTile(const RasterScene& scene, const TileRayGenerator& rays, const
 // Both passes over `crop`; makeSink() gives each tile task its sink.
 template <typename MakeSink>
 RasterStats rasterize(const World& world, const Camera& camera, const PixelRect& crop,
-                      const RasterOptions& options, MakeSink&& makeSink) {
+                      const RenderOptions& options, MakeSink&& makeSink) {
     if (options.tileSize < 1) fail("tile size must be at least 1, got ", options.tileSize);
     requireRasterizable(world);
     const auto start = std::chrono::steady_clock::now();
     RasterStats stats;
     const TileGrid grid(crop, options.tileSize);
     const TileRayGenerator rays(camera, options.seed, 1);
-    if (options.started) options.started(grid.count());
+    if (options.progress) options.progress->begin("raster", grid.count());
 
     std::atomic<uint64_t> fragments{0}, coveredPixels{0};
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
@@ -315,12 +315,13 @@ RasterStats rasterize(const World& world, const Camera& camera, const PixelRect&
                                   triangles + bins.begin[i + 1], counters, makeSink());
                     fragments += counters.fragments;
                     coveredPixels += counters.coveredPixels;
-                    if (options.tileDone) options.tileDone();
+                    if (options.progress) options.progress->advance(1);
                 }
             },
             tbb::simple_partitioner());
     });
 
+    if (options.progress) options.progress->end();
     stats.fragments = fragments;
     stats.coveredPixels = coveredPixels;
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -362,7 +363,7 @@ void requireRasterizable(const World& world) {
 }
 
 std::vector<Hit> rasterizeHits(const World& world, const Camera& camera, const PixelRect& crop,
-                               const RasterOptions& options, RasterStats* stats) {
+                               const RenderOptions& options, RasterStats* stats) {
     std::vector<Hit> hits(static_cast<size_t>(crop.area()));
     const RasterStats result = rasterize(world, camera, crop, options, [&] {
         return [&](int x, int y, const Ray&, const Hit& hit, Sampler&) {
@@ -374,7 +375,7 @@ std::vector<Hit> rasterizeHits(const World& world, const Camera& camera, const P
 }
 
 RasterStats rasterizeImage(const World& world, const Camera& camera, const Integrator& integrator,
-                           Film& film, const RasterOptions& options) {
+                           Film& film, const RenderOptions& options) {
     requireRasterSettings(integrator.name(), options.spp);
     const bool wantAovs = !film.aovs().empty();
     return rasterize(world, camera, film.crop(), options, [&] {

@@ -115,7 +115,7 @@ TEST_P(RasterAgreement, SameImageWithEveryFirstHitIntegrator) {
         const std::vector<AovKind> aovs = {AovKind::Normal, AovKind::Depth};
 
         Film rasterFilm(w, h, scene.fullImage(), aovs);
-        RasterOptions rasterOptions;
+        RenderOptions rasterOptions;
         rasterOptions.seed = scene.desc.render.seed;
         const RasterStats stats =
             rasterizeImage(scene.world, scene.camera, *integrator, rasterFilm, rasterOptions);

@@ -52,7 +52,7 @@ inline std::vector<Hit> traceHits(const TestScene& scene) {
 
 inline std::vector<Hit> rasterHits(const TestScene& scene, RasterStats* stats = nullptr,
                                    int threads = 0, int tileSize = 32) {
-    RasterOptions options;
+    RenderOptions options;
     options.threads = threads;
     options.tileSize = tileSize;
     return rasterizeHits(scene.world, scene.camera, scene.fullImage(), options, stats);

@@ -396,7 +396,7 @@ TEST(Rasterizer, CropRendersTheSameHitsAsTheFullImage) {
     const TestScene scene(jitteredGridScene(), AccelKind::Naive);
     const std::vector<Hit> full = rasterHits(scene);
     const PixelRect crop{13, 9, 61, 40};
-    const std::vector<Hit> part = rasterizeHits(scene.world, scene.camera, crop, RasterOptions{});
+    const std::vector<Hit> part = rasterizeHits(scene.world, scene.camera, crop, RenderOptions{});
     ASSERT_EQ(part.size(), size_t(crop.area()));
     for (int y = crop.y0; y < crop.y1; ++y)
         for (int x = crop.x0; x < crop.x1; ++x) {
@@ -428,7 +428,7 @@ TEST(Rasterizer, RefusesWhatItCannotDraw) {
     const TestScene quad = sceneFromText(R"({ "film": { "width": 8, "height": 8 },
       "shapes": [ { "type": "mesh", "positions": [[-9,-9,0],[9,-9,0],[0,9,0]], "indices": [0,1,2] } ] })");
     Film film(8, 8, PixelRect{0, 0, 8, 8}, {});
-    RasterOptions options;
+    RenderOptions options;
     EXPECT_THROW(rasterizeImage(quad.world, quad.camera, *makeIntegrator("direct", quad.world),
                                 film, options),
                  Error);

@@ -14,6 +14,11 @@
 //
 // Triangles are binned into screen tiles, tiles are rasterized in parallel
 // (oneTBB), and the result is the same for any thread count or tile size.
+// It takes the ray tracer's RenderOptions: threads, tileSize, spp (must be 1),
+// seed (the integrator's per-pixel generator) and progress (a "raster" phase
+// of one unit per tile, advanced from the worker threads); the pixel filter,
+// packets, cancel, passDone and the sample offset do not apply to one sample
+// at each pixel centre.
 // Algorithm, sampling rule and where the image differs from the ray-traced one:
 // docs/rasterizer.md.
 
@@ -30,19 +35,9 @@
 #include "strahl/film/film.h"
 #include "strahl/integrator/integrator.h"
 #include "strahl/integrator/world.h"
+#include "strahl/render/renderer.h"
 
 namespace strahl {
-
-struct RasterOptions {
-    int threads = 0;    // 0: all hardware threads
-    int tileSize = 32;  // pixels per tile side
-    int spp = 1;        // must be 1: one sample per pixel, at its centre
-    uint64_t seed = 0;  // seeds the integrator's per-pixel generator, as in RenderOptions
-    // Progress, like BuildOptions' BVH callbacks: `started` once with the tile
-    // count, then `tileDone` from the worker threads (so it must be thread-safe).
-    std::function<void(size_t tiles)> started;
-    std::function<void()> tileDone;
-};
 
 struct RasterStats {
     double seconds = 0.0;
@@ -67,12 +62,12 @@ void requireRasterizable(const World& world);
 // The first hit of every pixel centre of `crop`, row by row from its top left;
 // an invalid Hit where nothing is seen. For tests and tools; no shading.
 std::vector<Hit> rasterizeHits(const World& world, const Camera& camera, const PixelRect& crop,
-                               const RasterOptions& options, RasterStats* stats = nullptr);
+                               const RenderOptions& options, RasterStats* stats = nullptr);
 
 // Rasterizes film.crop() and shades every pixel into `film` (beauty and AOVs).
 // Checks everything above first and throws strahl::Error before touching the
 // film.
 RasterStats rasterizeImage(const World& world, const Camera& camera, const Integrator& integrator,
-                           Film& film, const RasterOptions& options);
+                           Film& film, const RenderOptions& options);
 
 }  // namespace strahl

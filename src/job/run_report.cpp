@@ -1,4 +1,4 @@
-#include "stats_file.h"
+#include "strahl/job/run_report.h"
 
 #include <cerrno>
 #include <cmath>
@@ -7,12 +7,14 @@
 #include <fstream>
 #include <system_error>
 
+#include <nlohmann/json.hpp>
+
 #include <unistd.h>
 
 #include "strahl/core/error.h"
 #include "strahl/film/image_output.h"
 
-namespace strahl::app {
+namespace strahl {
 
 namespace fs = std::filesystem;
 
@@ -26,6 +28,8 @@ std::string runStatus(const RunReport& r) {
     if (r.stopped.empty()) return "complete";
     return r.stopped == "time limit" ? "time limit" : "interrupted";
 }
+
+namespace {
 
 nlohmann::ordered_json statsJson(const RunReport& r) {
     nlohmann::ordered_json j;
@@ -65,6 +69,8 @@ nlohmann::ordered_json statsJson(const RunReport& r) {
     return j;
 }
 
+}  // namespace
+
 void checkStatsPath(const fs::path& file) {
     std::error_code ec;
     if (fs::is_directory(file, ec)) fail(file.string(), ": --stats names a folder, not a file");
@@ -96,4 +102,4 @@ void writeStatsFile(const fs::path& file, const RunReport& report) {
     });
 }
 
-}  // namespace strahl::app
+}  // namespace strahl

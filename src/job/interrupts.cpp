@@ -1,11 +1,6 @@
-#include "render_control.h"
+#include "strahl/job/interrupts.h"
 
-#include <cstdint>
-#include <sstream>
-
-#include "strahl/core/error.h"
-
-namespace strahl::app {
+namespace strahl {
 
 namespace {
 
@@ -47,33 +42,4 @@ std::string signalName(int signal) {
     return "signal " + std::to_string(signal);
 }
 
-std::string renderFingerprint(const Options& o, const std::string& imageFingerprint,
-                              const PixelRect& crop) {
-    std::ostringstream f;
-    f << imageFingerprint << ", crop " << crop.x0 << "," << crop.y0 << "," << crop.x1
-      << "," << crop.y1 << ", tile " << o.tileSize;
-    if (o.sampleOffset) f << ", samples from " << *o.sampleOffset;
-    return f.str();
-}
-
-namespace {
-
-std::string hex(uint64_t value) {
-    std::ostringstream text;
-    text << std::hex << value;
-    return text.str();
-}
-
-}  // namespace
-
-std::string splitFingerprint(const Options& o, const SceneDocument& document) {
-    return "scene " + document.file().filename().string() + " without spp fnv1a " +
-           hex(document.hash({"/film/outputs", "/render/spp"})) + ", accel " + o.accel;
-}
-
-std::string imageFingerprint(const SceneDocument& document) {
-    return "scene " + document.file().filename().string() + " fnv1a " +
-           hex(document.hash({"/film/outputs"}));
-}
-
-}  // namespace strahl::app
+}  // namespace strahl

@@ -1,8 +1,8 @@
-#include "frame_pattern.h"
+#include "strahl/job/frame_pattern.h"
 
 #include "strahl/core/error.h"
 
-namespace strahl::app {
+namespace strahl {
 
 bool hasFramePattern(const std::string& name) { return name.find('#') != std::string::npos; }
 
@@ -31,4 +31,4 @@ std::filesystem::path expandFramePattern(const std::filesystem::path& path, int 
     return expandFramePattern(name, frame);
 }
 
-}  // namespace strahl::app
+}  // namespace strahl

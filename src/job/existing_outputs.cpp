@@ -1,4 +1,4 @@
-#include "existing_outputs.h"
+#include "strahl/job/existing_outputs.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -10,7 +10,7 @@
 
 #include "strahl/core/error.h"
 
-namespace strahl::app {
+namespace strahl {
 
 namespace fs = std::filesystem;
 
@@ -83,4 +83,4 @@ bool recordsPartial(const fs::path& file) {
     return ext == ".exr" || ext == ".png";
 }
 
-}  // namespace strahl::app
+}  // namespace strahl

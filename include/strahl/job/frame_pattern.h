@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <string>
 
-namespace strahl::app {
+namespace strahl {
 
 bool hasFramePattern(const std::string& name);
 
@@ -21,4 +21,4 @@ std::string expandFramePattern(const std::string& name, int frame);
 std::filesystem::path expandFramePattern(const std::filesystem::path& path, int frame,
                                          const std::string& what);
 
-}  // namespace strahl::app
+}  // namespace strahl

@@ -1,19 +1,19 @@
 #pragma once
-// `strahl render --stats FILE.json`: what one render did, as a JSON file for
-// farm managers and scripts (every field is documented in docs/farm.md). The
-// same report feeds the final JSON progress line ("done" / "interrupted").
+// What one render job did (RenderJob's result): written as a JSON file with
+// `strahl render --stats FILE.json` for farm managers and scripts (every field
+// is documented in docs/farm.md); the CLI's final JSON progress line ("done" /
+// "interrupted") is made from it too.
 
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "strahl/core/pixel_rect.h"
 
-namespace strahl::app {
+namespace strahl {
 
 struct RunReport {
     std::string scene;
@@ -33,18 +33,17 @@ struct RunReport {
     std::vector<std::string> outputs;
     std::string stopped;  // "" (complete), "SIGINT", "SIGTERM", "time limit"
     int exitStatus = 0;
+    std::string statsFile;  // where the report is written ("": nowhere); not a field of it
 };
 
 // "complete", "interrupted" (by a signal) or "time limit".
 std::string runStatus(const RunReport& report);
 
-nlohmann::ordered_json statsJson(const RunReport& report);
-
 // Throws strahl::Error "<file>: ..." unless `file` can be written (its folder
 // exists and takes a new file): checked before the render, not after it.
 void checkStatsPath(const std::filesystem::path& file);
 
-// Writes statsJson(report), indented, through a temporary file and a rename.
+// Writes the report as indented JSON (docs/farm.md) through a temporary file and a rename.
 void writeStatsFile(const std::filesystem::path& file, const RunReport& report);
 
-}  // namespace strahl::app
+}  // namespace strahl

@@ -8,7 +8,7 @@
 
 #include "strahl/core/pixel_rect.h"
 
-namespace strahl::app {
+namespace strahl {
 
 struct ExpectedImage {
     int fullWidth = 0, fullHeight = 0;  // the film
@@ -28,4 +28,4 @@ std::string incompleteReason(const std::filesystem::path& file, const ExpectedIm
 // cannot be told from a complete one by itself.
 bool recordsPartial(const std::filesystem::path& file);
 
-}  // namespace strahl::app
+}  // namespace strahl
