@@ -12,6 +12,19 @@
 
 namespace strahl::meshio::gltf {
 
+void GltfReader::assemble(const SceneNodes& nodes, LoadedMesh& result) {
+    std::vector<PrimitiveJob> jobs;
+    for (const auto& [node, world] : nodes)
+        if (model_.nodes[node].mesh >= 0) addJobs(node, world, jobs);
+    if (usesDefaultMaterial_) {
+        MeshMaterial fallback = gltfDefaults();
+        fallback.name = "default";
+        result.materials.push_back(fallback);
+    }
+    build(jobs, result.mesh);
+    result.mesh.validate(name_);
+}
+
 void GltfReader::addJobs(size_t node, const glm::dmat4& world, std::vector<PrimitiveJob>& jobs) {
     const tinygltf::Node& n = model_.nodes[node];
     if (n.skin >= 0) warnOnce("skin", "skins are ignored (meshes keep their node transforms)");

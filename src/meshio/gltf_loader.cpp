@@ -22,17 +22,8 @@ LoadedMesh GltfReader::read(std::string_view bytes) {
     checkExtensions();
     LoadedMesh result;
     convertMaterials(result.materials);
-    std::vector<PrimitiveJob> jobs;
     checkNodeGraph();
-    for (const auto& [node, world] : sceneNodes())
-        if (model_.nodes[node].mesh >= 0) addJobs(node, world, jobs);
-    if (usesDefaultMaterial_) {
-        MeshMaterial fallback = gltfDefaults();
-        fallback.name = "default";
-        result.materials.push_back(fallback);
-    }
-    build(jobs, result.mesh);
-    result.mesh.validate(name_);
+    assemble(sceneNodes(), result);
     return result;
 }
 
@@ -40,17 +31,22 @@ std::vector<GltfCamera> GltfReader::readCameras(std::string_view bytes) {
     parse(bytes);
     checkExtensions();
     checkNodeGraph();
-    std::vector<GltfCamera> cameras;
-    for (const auto& [node, world] : sceneNodes()) {
-        const tinygltf::Node& n = model_.nodes[node];
-        if (n.camera < 0) continue;
-        const std::string place = concat("nodes[", node, "]");
-        if (size_t(n.camera) >= model_.cameras.size())
-            error(place, ": camera ", n.camera, " does not exist (", model_.cameras.size(),
-                  " cameras)");
-        cameras.push_back(convertCamera(size_t(n.camera), n, world, cameras.size()));
-    }
-    return cameras;
+    return placeCameras(sceneNodes());
+}
+
+// readCameras, then read's remaining steps on the same model: the first error
+// is the one loadGltfCameras, then loadGltf would throw (read's node checks
+// cannot fail once readCameras' have passed), and the warnings are read's.
+GltfContents GltfReader::readContents(std::string_view bytes) {
+    parse(bytes);
+    checkExtensions();
+    checkNodeGraph();
+    const SceneNodes nodes = sceneNodes();
+    GltfContents contents;
+    contents.cameras = placeCameras(nodes);
+    convertMaterials(contents.mesh.materials);
+    assemble(nodes, contents.mesh);
+    return contents;
 }
 
 }  // namespace meshio::gltf
@@ -65,6 +61,10 @@ LoadedMesh loadGltfFromMemory(std::string_view data, const fs::path& file) {
 
 std::vector<GltfCamera> loadGltfCameras(const fs::path& file) {
     return meshio::gltf::GltfReader(file).readCameras(meshio::readWholeFile(file));
+}
+
+GltfContents loadGltfContents(const fs::path& file) {
+    return meshio::gltf::GltfReader(file).readContents(meshio::readWholeFile(file));
 }
 
 }  // namespace strahl

@@ -1,7 +1,7 @@
 #pragma once
-// The glTF 2.0 reader behind loadGltf and loadGltfCameras, shared by the
-// gltf_*.cpp files (one stage each). Not part of the public meshio interface;
-// what it reads and its errors: docs/mesh-files.md.
+// The glTF 2.0 reader behind loadGltf, loadGltfCameras and loadGltfContents,
+// shared by the gltf_*.cpp files (one stage each). Not part of the public
+// meshio interface; what it reads and its errors: docs/mesh-files.md.
 
 #include <bit>
 #include <cstddef>
@@ -85,9 +85,11 @@ public:
     explicit GltfReader(const fs::path& file) : path_(file), name_(file.string()) {}
 
     // The loads (gltf_loader.cpp), each from the bytes of the whole file: the
-    // default scene as one world-space mesh, or the cameras its nodes place.
+    // default scene as one world-space mesh, the cameras its nodes place, or
+    // both from one parse.
     LoadedMesh read(std::string_view bytes);
     std::vector<GltfCamera> readCameras(std::string_view bytes);
+    GltfContents readContents(std::string_view bytes);
 
 private:
     // "file: <args>"; the arguments start with the place ("meshes[0].primitives[1]: ").
@@ -143,15 +145,19 @@ private:
                        const std::string& mime);
 
     // The scene (gltf_scene.cpp): the node graph checked, the default scene's
-    // nodes with their world transforms, and the camera a node places.
+    // nodes with their world transforms, and the cameras those nodes place.
+    using SceneNodes = std::vector<std::pair<size_t, glm::dmat4>>;  // node, world transform
     void checkNodeGraph() const;
     glm::dmat4 localTransform(size_t index) const;
-    std::vector<std::pair<size_t, glm::dmat4>> sceneNodes() const;
+    SceneNodes sceneNodes() const;
+    std::vector<GltfCamera> placeCameras(const SceneNodes& nodes) const;
     GltfCamera convertCamera(size_t index, const tinygltf::Node& node, const glm::dmat4& world,
                              size_t placed) const;
 
-    // Assembly (gltf_assembly.cpp): a placed mesh's triangle primitives checked
-    // into jobs, then all jobs appended into one TriangleMesh.
+    // Assembly (gltf_assembly.cpp): the meshes the nodes place, each triangle
+    // primitive checked into a job, then all jobs appended into one TriangleMesh
+    // (result.materials holds the converted materials already).
+    void assemble(const SceneNodes& nodes, LoadedMesh& result);
     void addJobs(size_t node, const glm::dmat4& world, std::vector<PrimitiveJob>& jobs);
     void build(const std::vector<PrimitiveJob>& jobs, TriangleMesh& mesh) const;
     void append(const PrimitiveJob& j, bool anyNormals, bool anyUvs, TriangleMesh& mesh) const;

@@ -92,7 +92,7 @@ glm::dmat4 GltfReader::localTransform(size_t index) const {
 // Every node of the scene with its world transform, parents before
 // children. Cycles and nodes with two parents are errors: a hierarchy must
 // be a forest, and a cycle would never end.
-std::vector<std::pair<size_t, glm::dmat4>> GltfReader::sceneNodes() const {
+GltfReader::SceneNodes GltfReader::sceneNodes() const {
     std::vector<int> roots;
     std::string rootsPlace = "root nodes";
     if (!model_.scenes.empty()) {
@@ -160,6 +160,21 @@ std::vector<std::pair<size_t, glm::dmat4>> GltfReader::sceneNodes() const {
         }
     }
     return instances;
+}
+
+// The camera of each node in `nodes` that has one, in that order.
+std::vector<GltfCamera> GltfReader::placeCameras(const SceneNodes& nodes) const {
+    std::vector<GltfCamera> cameras;
+    for (const auto& [node, world] : nodes) {
+        const tinygltf::Node& n = model_.nodes[node];
+        if (n.camera < 0) continue;
+        const std::string place = concat("nodes[", node, "]");
+        if (size_t(n.camera) >= model_.cameras.size())
+            error(place, ": camera ", n.camera, " does not exist (", model_.cameras.size(),
+                  " cameras)");
+        cameras.push_back(convertCamera(size_t(n.camera), n, world, cameras.size()));
+    }
+    return cameras;
 }
 
 GltfCamera GltfReader::convertCamera(size_t index, const tinygltf::Node& node,
