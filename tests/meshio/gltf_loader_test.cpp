@@ -1,7 +1,8 @@
 // glTF 2.0 loader: tiny .gltf/.glb files written by the tests (data-URI and
 // external buffers, a node hierarchy with a mirror, a byte-by-byte .glb, sparse
-// and interleaved accessors, embedded images), the errors of bad input, and the
-// DamagedHelmet of ../shared/data.
+// and interleaved accessors, embedded images), the errors of bad input,
+// loadGltfContents against loadGltf and loadGltfCameras, and the DamagedHelmet
+// of ../shared/data.
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -12,9 +13,12 @@
 #include <limits>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "same_bits.h"
 #include "strahl/core/error.h"
+#include "strahl/meshio/gltf_camera.h"
 #include "strahl/meshio/mesh_file.h"
 #include "warning_capture.h"
 #include "test_support.h"
@@ -154,8 +158,9 @@ Vec3 windingNormal(const TriangleMesh& m, size_t t) {
 
 // ------------------------------------------------------------------ .gltf
 
-TEST(GltfLoader, SingleTriangleWithDataUriBufferAndPbrMaterial) {
-    const LoadedMesh m = loadText("gltf-triangle", triangleGltf(R"(,
+// The triangle with a material using every extension the loader reads.
+std::string pbrTriangleGltf() {
+    return triangleGltf(R"(,
         "extensionsUsed": ["KHR_materials_emissive_strength", "KHR_materials_ior",
                            "KHR_materials_transmission"],
         "materials": [{"name": "glass",
@@ -165,7 +170,11 @@ TEST(GltfLoader, SingleTriangleWithDataUriBufferAndPbrMaterial) {
           "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 4.0},
                          "KHR_materials_ior": {"ior": 1.33},
                          "KHR_materials_transmission": {"transmissionFactor": 0.75}}}])",
-                                                                R"(, "material": 0)"));
+                        R"(, "material": 0)");
+}
+
+TEST(GltfLoader, SingleTriangleWithDataUriBufferAndPbrMaterial) {
+    const LoadedMesh m = loadText("gltf-triangle", pbrTriangleGltf());
     const TriangleMesh& mesh = m.mesh;
     ASSERT_EQ(mesh.triangleCount(), 1u);
     ASSERT_EQ(mesh.vertexCount(), 3u);
@@ -206,15 +215,20 @@ TEST(GltfLoader, PrimitiveWithoutMaterialGetsTheGltfDefaultMaterial) {
     EXPECT_EQ(warnings.text(), "");
 }
 
+// The triangle with its buffer in the file "tri data.bin" next to the glTF.
+std::string externalBufferGltf() {
+    const Triangle t;
+    return concat(R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}],
+                         "nodes": [{"mesh": 0}], "meshes": [{"primitives": [)",
+                  kTrianglePrimitive, R"(}]}],)", t.viewsAndAccessors(),
+                  R"(, "buffers": [{"byteLength": )", t.bytes.data.size(),
+                  R"(, "uri": "tri%20data.bin"}]})");
+}
+
 TEST(GltfLoader, ExternalBufferAndDispatchByExtensionIgnoringCase) {
     const fs::path dir = test::scratchDir("gltf-external");
-    const Triangle t;
-    writeFile(dir / "tri data.bin", t.bytes.data);
-    writeFile(dir / "Tri.GLTF", concat(R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}],
-                         "nodes": [{"mesh": 0}], "meshes": [{"primitives": [)",
-                                       kTrianglePrimitive, R"(}]}],)", t.viewsAndAccessors(),
-                                       R"(, "buffers": [{"byteLength": )", t.bytes.data.size(),
-                                       R"(, "uri": "tri%20data.bin"}]})"));
+    writeFile(dir / "tri data.bin", Triangle().bytes.data);
+    writeFile(dir / "Tri.GLTF", externalBufferGltf());
     const LoadedMesh m = loadMeshFile(dir / "Tri.GLTF");
     EXPECT_EQ(m.mesh.triangleCount(), 1u);
     EXPECT_EQ(m.mesh.positions[1], Vec3(1, 0, 0));
@@ -232,12 +246,15 @@ const char* kHierarchyNodes = R"(
       {"mesh": 0, "matrix": [-1, 0, 0, 0,  0, 1, 0, 0,  0, 0, 1, 0,  0, 0, 0, 1]},
       {"mesh": 0, "translation": [0, 0, 100]}],)";
 
-TEST(GltfLoader, NodeHierarchyAppliesTrsAndMatricesAndMirrorsFlipTheWinding) {
+// The triangle under kHierarchyNodes (or another node list).
+std::string hierarchyGltf(const char* nodes = kHierarchyNodes) {
     const Triangle t;
-    const LoadedMesh m = loadText(
-        "gltf-hierarchy", concat(R"({"asset": {"version": "2.0"},)", kHierarchyNodes,
-                                 R"("meshes": [{"primitives": [)", kTrianglePrimitive, R"(}]}],)",
-                                 t.viewsAndAccessors(), ",", t.buffers(), "}"));
+    return concat(R"({"asset": {"version": "2.0"},)", nodes, R"("meshes": [{"primitives": [)",
+                  kTrianglePrimitive, R"(}]}],)", t.viewsAndAccessors(), ",", t.buffers(), "}");
+}
+
+TEST(GltfLoader, NodeHierarchyAppliesTrsAndMatricesAndMirrorsFlipTheWinding) {
+    const LoadedMesh m = loadText("gltf-hierarchy", hierarchyGltf());
     const TriangleMesh& mesh = m.mesh;
     ASSERT_EQ(mesh.triangleCount(), 2u);  // node 3 is not in scene 1
     ASSERT_EQ(mesh.vertexCount(), 6u);
@@ -256,15 +273,13 @@ TEST(GltfLoader, NodeHierarchyAppliesTrsAndMatricesAndMirrorsFlipTheWinding) {
         expectNear(windingNormal(mesh, tri), {0, 0, 1}, "winding", tri);
 }
 
-TEST(GltfLoader, NormalsUseTheInverseTransposeAndStayUnitLength) {
-    // A slanted triangle under a non-uniform scale: the normal must stay
-    // perpendicular to the transformed triangle.
+// A slanted triangle with normals under a non-uniform scale, not indexed.
+std::string slantedTriangleGltf() {
     Bytes b;
     b.add<float>({0, 0, 0, 1, 0, 1, 0, 1, 0});
     const float s = 1.0f / std::sqrt(2.0f);
     b.add<float>({-s, 0, s, -s, 0, s, -s, 0, s});
-    const LoadedMesh m =
-        loadText("gltf-normals", concat(R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}],
+    return concat(R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}],
                "nodes": [{"mesh": 0, "scale": [3, 1, 0.5]}],
                "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}}]}],
                "bufferViews": [{"buffer": 0, "byteLength": 36},
@@ -273,7 +288,12 @@ TEST(GltfLoader, NormalsUseTheInverseTransposeAndStayUnitLength) {
                  {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"},
                  {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3"}],
                "buffers": [{"byteLength": 72, "uri": ")",
-                                        dataUri(b.data), R"("}]})"));
+                  dataUri(b.data), R"("}]})");
+}
+
+TEST(GltfLoader, NormalsUseTheInverseTransposeAndStayUnitLength) {
+    // The normal must stay perpendicular to the transformed triangle.
+    const LoadedMesh m = loadText("gltf-normals", slantedTriangleGltf());
     ASSERT_EQ(m.mesh.triangleCount(), 1u);
     EXPECT_EQ(m.mesh.indices, (std::vector<uint32_t>{0, 1, 2}));  // non-indexed: 0..n-1
     const Vec3 face = windingNormal(m.mesh, 0);
@@ -283,8 +303,9 @@ TEST(GltfLoader, NormalsUseTheInverseTransposeAndStayUnitLength) {
     }
 }
 
-TEST(GltfLoader, InterleavedStrideNormalizedTexcoordsSparseAccessorsAndByteIndices) {
-    // One buffer view with byteStride 16: position (12 bytes) + u16 normalized uv.
+// Two primitives: one buffer view with byteStride 16 (position, 12 bytes, and
+// a u16 normalized uv), u8 normalized uvs, a sparse position and u8 indices.
+std::string interleavedGltf() {
     Bytes b;
     const uint16_t half = 32768;  // 32768 / 65535, a little above 0.5
     b.add<float>({0, 0, 0});
@@ -298,21 +319,20 @@ TEST(GltfLoader, InterleavedStrideNormalizedTexcoordsSparseAccessorsAndByteIndic
     const size_t sparseValues = b.add<float>({5, 6, 7});
     const size_t u8indices = b.add<uint8_t>({0, 1, 2});
     b.pad();
-    const LoadedMesh m = loadText(
-        "gltf-interleaved", concat(R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}],
+    return concat(R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}],
                "nodes": [{"mesh": 0}],
                "meshes": [{"primitives": [
                  {"attributes": {"POSITION": 0, "TEXCOORD_0": 1}},
                  {"attributes": {"POSITION": 2, "TEXCOORD_0": 3}, "indices": 4}]}],
                "bufferViews": [{"buffer": 0, "byteLength": 48, "byteStride": 16},
                                {"buffer": 0, "byteOffset": )",
-                                   u8uvs, R"(, "byteLength": 6},
+                  u8uvs, R"(, "byteLength": 6},
                                {"buffer": 0, "byteOffset": )",
-                                   sparseIndices, R"(, "byteLength": 1},
+                  sparseIndices, R"(, "byteLength": 1},
                                {"buffer": 0, "byteOffset": )",
-                                   sparseValues, R"(, "byteLength": 12},
+                  sparseValues, R"(, "byteLength": 12},
                                {"buffer": 0, "byteOffset": )",
-                                   u8indices, R"(, "byteLength": 3}],
+                  u8indices, R"(, "byteLength": 3}],
                "accessors": [
                  {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"},
                  {"bufferView": 0, "byteOffset": 12, "componentType": 5123,
@@ -325,7 +345,11 @@ TEST(GltfLoader, InterleavedStrideNormalizedTexcoordsSparseAccessorsAndByteIndic
                   "count": 3, "type": "VEC2"},
                  {"bufferView": 4, "componentType": 5121, "count": 3, "type": "SCALAR"}],
                "buffers": [{"byteLength": )",
-                                   b.data.size(), R"(, "uri": ")", dataUri(b.data), R"("}]})"));
+                  b.data.size(), R"(, "uri": ")", dataUri(b.data), R"("}]})");
+}
+
+TEST(GltfLoader, InterleavedStrideNormalizedTexcoordsSparseAccessorsAndByteIndices) {
+    const LoadedMesh m = loadText("gltf-interleaved", interleavedGltf());
     const TriangleMesh& mesh = m.mesh;
     ASSERT_EQ(mesh.vertexCount(), 6u);
     EXPECT_EQ(mesh.indices, (std::vector<uint32_t>{0, 1, 2, 3, 4, 5}));  // u8 in primitive 1
@@ -342,15 +366,19 @@ TEST(GltfLoader, InterleavedStrideNormalizedTexcoordsSparseAccessorsAndByteIndic
     EXPECT_NEAR(mesh.uvs[5].y, 1.0f, 1e-6f);
 }
 
-TEST(GltfLoader, PrimitivesWithoutNormalsGetFlatNormalsNextToOthers) {
+// The triangle twice under a mirror, the second time without normals and uvs.
+std::string flatNormalsGltf() {
     const Triangle t;
-    const LoadedMesh m =
-        loadText("gltf-flat", concat(R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}],
+    return concat(R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}],
                "nodes": [{"mesh": 0, "scale": [-1, 1, 1]}],
                "meshes": [{"primitives": [)",
-                                     kTrianglePrimitive, R"(},
+                  kTrianglePrimitive, R"(},
                  {"attributes": {"POSITION": 0}, "indices": 3, "mode": 4}]}],)",
-                                     t.viewsAndAccessors(), ",", t.buffers(), "}"));
+                  t.viewsAndAccessors(), ",", t.buffers(), "}");
+}
+
+TEST(GltfLoader, PrimitivesWithoutNormalsGetFlatNormalsNextToOthers) {
+    const LoadedMesh m = loadText("gltf-flat", flatNormalsGltf());
     ASSERT_EQ(m.mesh.triangleCount(), 2u);
     ASSERT_EQ(m.mesh.vertexCount(), 6u);  // the flat primitive: one vertex per corner
     ASSERT_EQ(m.mesh.normals.size(), 6u);
@@ -361,32 +389,43 @@ TEST(GltfLoader, PrimitivesWithoutNormalsGetFlatNormalsNextToOthers) {
     EXPECT_EQ(m.mesh.uvs[5], Vec2(0.0f));
 }
 
+// The triangle, then the same primitive as lines (mode 1); `extra` as in triangleGltf.
+std::string linesGltf(const std::string& extra = "") {
+    return triangleGltf(extra, R"(}, )" + std::string(kTrianglePrimitive) + R"(, "mode": 1)");
+}
+
 TEST(GltfLoader, ModesOtherThanTrianglesAreSkippedWithAWarning) {
     WarningCapture warnings;
-    const LoadedMesh m =
-        loadText("gltf-lines",
-                 triangleGltf("", R"(}, )" + std::string(kTrianglePrimitive) + R"(, "mode": 1)"));
+    const LoadedMesh m = loadText("gltf-lines", linesGltf());
     EXPECT_EQ(m.mesh.triangleCount(), 1u);
     EXPECT_THAT(warnings.text(),
                 HasSubstr("model.gltf: meshes[0].primitives[1]: mode 1 is not TRIANGLES (4); "
                           "primitive skipped"));
 }
 
-TEST(GltfLoader, TexturePathsResolvePercentDecodedAndEmbeddedImagesAreCached) {
-    const fs::path dir = test::scratchDir("gltf-textures");
-    writeFile(dir / "tex dir" / "base color.png", "png");
-    const std::string png = std::string("\x89PNG\r\n\x1a\n", 8) + "fake image bytes";
-    WarningCapture warnings;
-    writeFile(dir / "t.gltf", triangleGltf(concat(R"(,
+// A PNG signature and some bytes: what the loader takes for a PNG image.
+const std::string kPng = std::string("\x89PNG\r\n\x1a\n", 8) + "fake image bytes";
+
+// The triangle with textures from "tex dir/base color.png" (percent-encoded),
+// from kPng in a data URI and from the missing "nowhere.png".
+std::string texturedGltf() {
+    return triangleGltf(concat(R"(,
         "images": [{"uri": "tex%20dir/base%20color.png"},
                    {"uri": "data:image/png;base64,)",
-                                                  base64(png), R"("},
+                               base64(kPng), R"("},
                    {"uri": "nowhere.png"}],
         "textures": [{"source": 0}, {"source": 1}, {"source": 2}],
         "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0},
                                                 "metallicRoughnessTexture": {"index": 2}},
                        "normalTexture": {"index": 1}, "emissiveTexture": {"index": 1}}])"),
-                                           R"(, "material": 0)"));
+                        R"(, "material": 0)");
+}
+
+TEST(GltfLoader, TexturePathsResolvePercentDecodedAndEmbeddedImagesAreCached) {
+    const fs::path dir = test::scratchDir("gltf-textures");
+    writeFile(dir / "tex dir" / "base color.png", "png");
+    WarningCapture warnings;
+    writeFile(dir / "t.gltf", texturedGltf());
     const LoadedMesh m = loadGltf(dir / "t.gltf");
     ASSERT_EQ(m.materials.size(), 1u);
     const MeshMaterial& g = m.materials[0];
@@ -396,7 +435,7 @@ TEST(GltfLoader, TexturePathsResolvePercentDecodedAndEmbeddedImagesAreCached) {
     EXPECT_EQ(g.normalTexture.extension(), ".png");
     EXPECT_THAT(g.normalTexture.parent_path().filename().string(), HasSubstr("strahl-gltf-"));
     EXPECT_EQ(g.normalTexture.parent_path().parent_path(), fs::temp_directory_path());
-    EXPECT_EQ(test::readFile(g.normalTexture), png);
+    EXPECT_EQ(test::readFile(g.normalTexture), kPng);
     EXPECT_TRUE(g.metallicRoughnessTexture.empty());
     EXPECT_THAT(warnings.text(), HasSubstr("t.gltf: images[2]: texture 'nowhere.png' not found"));
 
@@ -407,11 +446,13 @@ TEST(GltfLoader, TexturePathsResolvePercentDecodedAndEmbeddedImagesAreCached) {
     fs::remove_all(g.normalTexture.parent_path());  // the cache folder of this test's file
 }
 
+// extensionsUsed, with one extension the loader reads and one it does not.
+const char* kExtensionsUsed = R"(, "extensionsUsed": ["KHR_texture_transform",
+                                                      "KHR_materials_ior"])";
+
 TEST(GltfLoader, UnsupportedOptionalExtensionsAreNamedInAWarning) {
     WarningCapture warnings;
-    const LoadedMesh m =
-        loadText("gltf-extensions", triangleGltf(R"(, "extensionsUsed": ["KHR_texture_transform",
-                                                                 "KHR_materials_ior"])"));
+    const LoadedMesh m = loadText("gltf-extensions", triangleGltf(kExtensionsUsed));
     EXPECT_EQ(m.mesh.triangleCount(), 1u);
     EXPECT_THAT(warnings.text(), HasSubstr("ignoring the glTF extensions KHR_texture_transform"));
     EXPECT_THAT(warnings.text(), Not(HasSubstr("KHR_materials_ior")));
@@ -750,6 +791,193 @@ TEST(GltfLoader, TruncatedGlbSaysWhatIsMissing) {
     writeFile(dir / "cut.glb", patched);
     EXPECT_THAT(test::errorMessage([&] { loadGltf(dir / "cut.glb"); }),
                 HasSubstr("truncated .glb: the BIN chunk announces"));
+}
+
+// ------------------------------------------------------------------ loadGltfContents
+
+// kHierarchyNodes with cameras: the perspective "main" on the root, the
+// orthographic camera 1 on the mirrored node 2 (unnamed: "camera 1"), and
+// camera 0 again on node 3, which is outside the default scene.
+const char* kCameraNodes = R"(
+    "scene": 1,
+    "scenes": [{"nodes": [3]}, {"nodes": [0]}],
+    "nodes": [
+      {"name": "rig", "camera": 0, "translation": [10, 0, 0], "children": [1, 2]},
+      {"mesh": 0, "rotation": [0, 0, 0.7071067811865476, 0.7071067811865476],
+       "scale": [2, 2, 2]},
+      {"mesh": 0, "camera": 1,
+       "matrix": [-1, 0, 0, 0,  0, 1, 0, 0,  0, 0, 1, 0,  0, 0, 0, 1]},
+      {"mesh": 0, "camera": 0, "translation": [0, 0, 100]}],
+    "cameras": [
+      {"name": "main", "type": "perspective", "perspective": {"yfov": 0.5, "znear": 0.1}},
+      {"type": "orthographic", "orthographic": {"xmag": 4, "ymag": 3, "znear": 0, "zfar": 9}}],)";
+
+// `text` with its one occurrence of `from` replaced by `to`.
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+    const size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+    return text;
+}
+
+// Two loads of the same file give the same mesh and materials, bit for bit.
+void expectSameMesh(const LoadedMesh& a, const LoadedMesh& b) {
+    EXPECT_TRUE(test::sameBits(a.mesh.positions, b.mesh.positions));
+    EXPECT_TRUE(test::sameBits(a.mesh.normals, b.mesh.normals));
+    EXPECT_TRUE(test::sameBits(a.mesh.uvs, b.mesh.uvs));
+    EXPECT_EQ(a.mesh.indices, b.mesh.indices);
+    EXPECT_EQ(a.mesh.faceMaterials, b.mesh.faceMaterials);
+    EXPECT_EQ(a.mesh.isPadded(), b.mesh.isPadded());
+    ASSERT_EQ(a.materials.size(), b.materials.size());
+    for (size_t i = 0; i < a.materials.size(); ++i) {
+        SCOPED_TRACE(concat("material ", i));
+        const MeshMaterial& x = a.materials[i];
+        const MeshMaterial& y = b.materials[i];
+        EXPECT_EQ(x.name, y.name);
+        EXPECT_EQ(x.source, y.source);
+        EXPECT_EQ(x.diffuse, y.diffuse);
+        EXPECT_EQ(x.specular, y.specular);
+        EXPECT_EQ(x.shininess, y.shininess);
+        EXPECT_EQ(x.ior, y.ior);
+        EXPECT_EQ(x.dissolve, y.dissolve);
+        EXPECT_EQ(x.illum, y.illum);
+        EXPECT_EQ(x.transmission, y.transmission);
+        EXPECT_EQ(x.metallic, y.metallic);
+        EXPECT_EQ(x.roughness, y.roughness);
+        EXPECT_EQ(x.emission, y.emission);
+        EXPECT_EQ(x.diffuseTexture, y.diffuseTexture);
+        EXPECT_EQ(x.normalTexture, y.normalTexture);
+        EXPECT_EQ(x.metallicRoughnessTexture, y.metallicRoughnessTexture);
+        EXPECT_EQ(x.emissionTexture, y.emissionTexture);
+    }
+}
+
+void expectSameCameras(const std::vector<GltfCamera>& a, const std::vector<GltfCamera>& b) {
+    ASSERT_EQ(a.size(), b.size());
+    for (size_t i = 0; i < a.size(); ++i) {
+        SCOPED_TRACE(concat("camera ", i));
+        EXPECT_EQ(a[i].name, b[i].name);
+        EXPECT_EQ(a[i].orthographic, b[i].orthographic);
+        EXPECT_EQ(a[i].eye, b[i].eye);
+        EXPECT_EQ(a[i].back, b[i].back);
+        EXPECT_EQ(a[i].up, b[i].up);
+        EXPECT_EQ(a[i].yfovDegrees, b[i].yfovDegrees);
+        EXPECT_EQ(a[i].xmag, b[i].xmag);
+        EXPECT_EQ(a[i].ymag, b[i].ymag);
+    }
+}
+
+// One read and one parse give what loadGltf and loadGltfCameras give, on every
+// file the tests above load, the DamagedHelmet too when ../shared/data is there.
+TEST(GltfLoader, ContentsEqualLoadGltfAndLoadGltfCameras) {
+    const fs::path dir = test::scratchDir("gltf-contents");
+    writeFile(dir / "tri data.bin", Triangle().bytes.data);
+    writeFile(dir / "tex dir" / "base color.png", "png");
+    const std::pair<const char*, std::string> files[] = {
+        {"pbr.gltf", pbrTriangleGltf()},
+        {"default.gltf", triangleGltf()},
+        {"Tri.GLTF", externalBufferGltf()},
+        {"hierarchy.gltf", hierarchyGltf()},
+        {"cameras.gltf", hierarchyGltf(kCameraNodes)},
+        {"normals.gltf", slantedTriangleGltf()},
+        {"interleaved.gltf", interleavedGltf()},
+        {"flat.gltf", flatNormalsGltf()},
+        {"lines.gltf", linesGltf()},
+        {"textures.gltf", texturedGltf()},
+        {"extensions.gltf", triangleGltf(kExtensionsUsed)},
+        {"quad.glb", quadGlb()}};
+    std::vector<fs::path> paths;
+    for (const auto& [name, text] : files) {
+        writeFile(dir / name, text);
+        paths.push_back(dir / name);
+    }
+    const fs::path helmet = test::sharedData() / "damaged-helmet-gltf" / "DamagedHelmet.gltf";
+    if (fs::exists(helmet)) paths.push_back(helmet);
+
+    WarningCapture warnings;  // lines, textures and extensions warn
+    for (const fs::path& file : paths) {
+        SCOPED_TRACE(file.string());
+        const GltfContents contents = loadGltfContents(file);
+        expectSameMesh(contents.mesh, loadGltf(file));
+        expectSameCameras(contents.cameras, loadGltfCameras(file));
+    }
+
+    // The cameras file places both cameras, in hierarchy order, and its mesh.
+    const GltfContents cameras = loadGltfContents(dir / "cameras.gltf");
+    EXPECT_EQ(cameras.mesh.mesh.triangleCount(), 2u);
+    ASSERT_EQ(cameras.cameras.size(), 2u);
+    EXPECT_EQ(cameras.cameras[0].name, "main");
+    EXPECT_EQ(cameras.cameras[1].name, "camera 1");
+    EXPECT_TRUE(cameras.cameras[1].orthographic);
+    EXPECT_EQ(cameras.cameras[1].eye, Vec3(10, 0, 0));
+
+    // The cache folders of the embedded images.
+    for (const char* name : {"textures.gltf", "quad.glb"}) {
+        for (const MeshMaterial& g : loadGltf(dir / name).materials) {
+            for (const fs::path& image : {g.diffuseTexture, g.normalTexture})
+                if (image.parent_path().filename().string().rfind("strahl-gltf-", 0) == 0)
+                    fs::remove_all(image.parent_path());
+        }
+    }
+}
+
+// The first error is the one loadGltfCameras, then loadGltf would throw: the
+// file's, the node hierarchy's and the cameras' before the mesh's.
+TEST(GltfLoader, ContentsThrowTheFirstErrorOfLoadGltfCamerasThenLoadGltf) {
+    const fs::path dir = test::scratchDir("gltf-contents-errors");
+    const fs::path file = dir / "bad.gltf";
+    const std::string good = hierarchyGltf(kCameraNodes);
+    const auto contentsError = [&] { return test::errorMessage([&] { loadGltfContents(file); }); };
+    const auto camerasError = [&] { return test::errorMessage([&] { loadGltfCameras(file); }); };
+    const auto meshError = [&] { return test::errorMessage([&] { loadGltf(file); }); };
+
+    // Unparsable: the same message from all three.
+    writeFile(file, good.substr(0, good.size() / 2));
+    EXPECT_THAT(contentsError(), HasSubstr("bad.gltf: "));
+    EXPECT_EQ(contentsError(), camerasError());
+    EXPECT_EQ(contentsError(), meshError());
+
+    // Only the mesh is wrong: loadGltf's message.
+    const std::string missingMaterial =
+        replaced(good, R"("indices": 3}]}])", R"("indices": 3, "material": 5}]}])");
+    writeFile(file, missingMaterial);
+    EXPECT_EQ(loadGltfCameras(file).size(), 2u);
+    EXPECT_EQ(contentsError(), meshError());
+    EXPECT_THAT(contentsError(), HasSubstr("meshes[0].primitives[0]: material 5 does not exist"));
+
+    // A camera and the mesh are wrong: the camera's message.
+    writeFile(file, replaced(missingMaterial, R"("camera": 1,)", R"("camera": 7,)"));
+    EXPECT_EQ(contentsError(), camerasError());
+    EXPECT_THAT(contentsError(), HasSubstr("nodes[2]: camera 7 does not exist (2 cameras)"));
+    EXPECT_NE(contentsError(), meshError());
+
+    // The hierarchy and a material are wrong: the hierarchy's message, where
+    // loadGltf alone, which converts materials first, names the material.
+    writeFile(file, replaced(replaced(good, R"("children": [1, 2]})", R"("children": [1, 2, 0]})"),
+                             R"("cameras": [)",
+                             R"("materials": [{"normalTexture": {"index": 4}}], "cameras": [)"));
+    EXPECT_EQ(contentsError(), camerasError());
+    EXPECT_THAT(contentsError(), HasSubstr("nodes[0].children[2]: node 0 is its own ancestor"));
+    EXPECT_THAT(meshError(), HasSubstr("materials[0].normalTexture: texture 4 does not exist"));
+}
+
+// The warnings of one load, once each: loadGltfCameras before loadGltf would
+// repeat the file's own (here the unsupported extension).
+TEST(GltfLoader, ContentsWarnWhatLoadGltfWarns) {
+    const fs::path dir = test::scratchDir("gltf-contents-warnings");
+    writeFile(dir / "lines.gltf", linesGltf(kExtensionsUsed));
+    std::string loadWarnings;
+    {
+        WarningCapture warnings;
+        loadGltf(dir / "lines.gltf");
+        loadWarnings = warnings.text();
+    }
+    WarningCapture warnings;
+    loadGltfContents(dir / "lines.gltf");
+    EXPECT_EQ(warnings.text(), loadWarnings);
+    EXPECT_THAT(warnings.text(), HasSubstr("ignoring the glTF extensions KHR_texture_transform"));
+    EXPECT_THAT(warnings.text(), HasSubstr("mode 1 is not TRIANGLES (4)"));
+    EXPECT_EQ(warnings.text().find("ignoring"), warnings.text().rfind("ignoring"));
 }
 
 // ------------------------------------------------------------------ shared data

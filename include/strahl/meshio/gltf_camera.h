@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "strahl/core/math.h"
+#include "strahl/meshio/mesh_file.h"
 
 namespace strahl {
 
@@ -28,5 +29,20 @@ struct GltfCamera {
 // missing camera index, a non-positive yfov, a zero xmag/ymag, a node whose
 // transform collapses the view direction).
 std::vector<GltfCamera> loadGltfCameras(const std::filesystem::path& file);
+
+// What loadGltf and loadGltfCameras give for the same file, from one read and
+// one parse (a scene using a glTF file as its camera source and its mesh).
+struct GltfContents {
+    LoadedMesh mesh;
+    std::vector<GltfCamera> cameras;
+};
+
+// Throws what calling loadGltfCameras, then loadGltf would throw first: an
+// error of the file, its node hierarchy or a camera before an error of the
+// mesh or materials. (loadGltf alone checks materials before the hierarchy, so
+// for a file with both kinds of error it names the material one instead.)
+// Warns what loadGltf warns (up to the error, if any); the two separate calls
+// would repeat the file's parse and extension warnings.
+GltfContents loadGltfContents(const std::filesystem::path& file);
 
 }  // namespace strahl
