@@ -12,7 +12,7 @@ find_package(nlohmann_json 3.10 REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(Threads REQUIRED)
 
-# tinygltf (libtinygltf-dev) is used header-only: src/meshio/gltf_loader.cpp
+# tinygltf (libtinygltf-dev) is used header-only: src/meshio/gltf_parse.cpp
 # compiles its implementation without image decoding. Debian's TinyGLTF config
 # would link its shared library, which decodes every image with stb_image, so
 # only the header is taken (as a system header: its warnings are not ours). Its

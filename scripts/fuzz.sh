@@ -55,7 +55,7 @@ command -v "$cxx" >/dev/null || { cc=clang-14; cxx=clang++-14; }
 # add -fsanitize=fuzzer (fuzz/CMakeLists.txt). -O1 with line tables: fast enough
 # to fuzz, quick to build, readable stack traces; assertions stay on. UBSan's
 # vptr check is off for the libraries: it makes tinygltf's and nlohmann::json's
-# templates (gltf_loader.cpp) take about six times longer to compile, and the
+# templates (gltf_parse.cpp) take about six times longer to compile, and the
 # parsers do no downcasts for it to check.
 sanitize="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize=vptr"
 sanitize+=" -fno-sanitize-recover=undefined"

@@ -9,6 +9,7 @@
 #include "gltf_reader.h"
 #include "strahl/meshio/gltf_camera.h"
 #include "strahl/meshio/mesh_file.h"
+#include "strahl/meshio/mesh_format.h"
 #include "text_scan.h"
 
 namespace fs = std::filesystem;
@@ -66,5 +67,11 @@ std::vector<GltfCamera> loadGltfCameras(const fs::path& file) {
 GltfContents loadGltfContents(const fs::path& file) {
     return meshio::gltf::GltfReader(file).readContents(meshio::readWholeFile(file));
 }
+
+namespace {
+constexpr std::string_view kGltfExtensions[] = {".gltf", ".glb"};
+}  // namespace
+
+extern const MeshFormat kGltfFormat{"glTF 2.0", kGltfExtensions, &loadGltf, &loadGltfFromMemory};
 
 }  // namespace strahl

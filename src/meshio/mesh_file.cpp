@@ -1,7 +1,8 @@
-// File-level parts of meshio: dispatch on the extension, reading a whole file,
+// File-level parts of meshio: dispatch on the extension (mesh_format.h), reading a whole file,
 // warnings, and the case-insensitive file lookup used for .mtl and texture names.
 
 #include "strahl/meshio/mesh_file.h"
+#include "strahl/meshio/mesh_format.h"
 
 #include <cerrno>
 #include <cstdio>
@@ -88,12 +89,9 @@ void setMeshWarningHandler(MeshWarningHandler handler) {
 }
 
 LoadedMesh loadMeshFile(const fs::path& file) {
-    const std::string ext = meshio::toLower(file.extension().string());
-    if (ext == ".obj") return loadObj(file);
-    if (ext == ".ply") return loadPly(file);
-    if (ext == ".gltf" || ext == ".glb") return loadGltf(file);
+    if (const MeshFormat* format = findMeshFormat(file)) return format->load(file);
     fail(file.string(), ": unknown mesh file extension '", file.extension().string(),
-         "' (expected .obj, .ply, .gltf or .glb)");
+         "' (expected ", meshExtensionList(", ", " or "), ")");
 }
 
 fs::path findFileCaseInsensitive(const fs::path& dir, const std::string& name) {

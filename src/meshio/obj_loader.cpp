@@ -21,6 +21,7 @@
 #include "mtl_reader.h"
 #include "obj_chunks.h"
 #include "strahl/meshio/mesh_file.h"
+#include "strahl/meshio/mesh_format.h"
 #include "text_scan.h"
 
 namespace fs = std::filesystem;
@@ -296,5 +297,11 @@ LoadedMesh loadObj(const fs::path& file) {
 LoadedMesh loadObjFromMemory(std::string_view data, const fs::path& file) {
     return meshio::decodeObj(data, file, kChunkBytes);
 }
+
+namespace {
+constexpr std::string_view kObjExtensions[] = {".obj"};
+}  // namespace
+
+extern const MeshFormat kObjFormat{"OBJ", kObjExtensions, &loadObj, &loadObjFromMemory};
 
 }  // namespace strahl

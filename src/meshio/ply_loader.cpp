@@ -21,6 +21,7 @@
 #include "ply_parallel.h"
 #include "ply_sequential.h"
 #include "strahl/meshio/mesh_file.h"
+#include "strahl/meshio/mesh_format.h"
 #include "text_scan.h"
 
 namespace fs = std::filesystem;
@@ -124,5 +125,11 @@ LoadedMesh loadPly(const fs::path& file) {
 LoadedMesh loadPlyFromMemory(std::string_view data, const fs::path& file) {
     return meshio::decodePly(data, file, true);
 }
+
+namespace {
+constexpr std::string_view kPlyExtensions[] = {".ply"};
+}  // namespace
+
+extern const MeshFormat kPlyFormat{"PLY", kPlyExtensions, &loadPly, &loadPlyFromMemory};
 
 }  // namespace strahl

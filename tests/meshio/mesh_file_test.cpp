@@ -3,11 +3,13 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <fstream>
 #include <string>
 
 #include "strahl/core/error.h"
 #include "strahl/meshio/mesh_file.h"
+#include "strahl/meshio/mesh_format.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;
@@ -33,11 +35,32 @@ TEST(LoadMeshFile, DispatchesOnTheExtensionIgnoringCase) {
     EXPECT_EQ(loadMeshFile(dir / "tri.Ply").mesh.triangleCount(), 1u);
 }
 
+TEST(MeshFormats, EachExtensionBelongsToOneFormatAndTheListsSayThemAll) {
+    size_t extensions = 0;
+    for (const MeshFormat* format : meshFormats()) {
+        EXPECT_FALSE(format->name.empty());
+        EXPECT_NE(format->load, nullptr);
+        EXPECT_NE(format->loadFromMemory, nullptr);
+        for (std::string_view extension : format->extensions) {
+            ++extensions;
+            EXPECT_EQ(findMeshFormat("model" + std::string(extension)), format) << extension;
+            std::string upper(extension);
+            for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+            EXPECT_EQ(findMeshFormat("model" + upper), format) << upper;
+        }
+    }
+    EXPECT_EQ(extensions, 4u);
+    EXPECT_EQ(findMeshFormat("model.stl"), nullptr);
+    EXPECT_EQ(meshExtensionList(", ", " or "), ".obj, .ply, .gltf or .glb");
+    EXPECT_EQ(meshExtensionList(", ", ", "), ".obj, .ply, .gltf, .glb");
+}
+
 TEST(LoadMeshFile, UnknownExtensionNamesTheFile) {
     const fs::path dir = test::scratchDir("meshfile-unknown");
     EXPECT_THAT(errorOf(dir / "model.stl"),
                 HasSubstr((dir / "model.stl").string() + ": unknown mesh file extension '.stl'"));
     EXPECT_THAT(errorOf(dir / "model"), HasSubstr("model: unknown mesh file extension ''"));
+    EXPECT_THAT(errorOf(dir / "model.stl"), HasSubstr("(expected .obj, .ply, .gltf or .glb)"));
 }
 
 TEST(LoadMeshFile, MissingOrUnreadableFileGivesTheSystemReason) {
