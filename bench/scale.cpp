@@ -113,10 +113,11 @@ struct CropRender {
 
 CropRender renderCrop(const SceneDesc& desc, const PixelRect& crop, int spp, int tileSize) {
     CropRender result;
-    const World world = buildWorld(desc, BuildOptions{}, &result.timings);
+    const BuiltScene scene = buildScene(desc, BuildOptions{}, &result.timings);
+    const World& world = scene.world;
     result.triangles = world.triangleCount();
     result.instancedTriangles = world.instancedTriangleCount();
-    const Camera camera = buildCamera(desc.camera, desc.film.width, desc.film.height);
+    const Camera camera = buildCamera(scene.camera, desc.film.width, desc.film.height);
     const auto integrator = makeIntegrator(desc.render.integrator, world,
                                            buildIntegratorOptions(desc, camera));
     Film film(desc.film.width, desc.film.height, crop, desc.film.aovs);

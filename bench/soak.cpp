@@ -371,8 +371,9 @@ void renderOnce(int iteration, const fs::path& folder, const fs::path& teapot,
     const SceneDesc desc =
         parseSceneText(sceneText(iteration, teapot, gltf), folder / ("soak-" + name + ".json"));
     BuildOptions build;  // all threads, Embree
-    const World world = buildWorld(desc, build);
-    const Camera camera = buildCamera(desc.camera, desc.film.width, desc.film.height);
+    const BuiltScene scene = buildScene(desc, build);
+    const World& world = scene.world;
+    const Camera camera = buildCamera(scene.camera, desc.film.width, desc.film.height);
     const auto integrator = makeIntegrator("path", world, buildIntegratorOptions(desc, camera));
     Film film(desc.film.width, desc.film.height, PixelRect{0, 0, desc.film.width, desc.film.height},
               desc.film.aovs);

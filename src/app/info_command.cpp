@@ -41,7 +41,8 @@ void printShapes(const std::vector<SceneShape>& shapes, const char* indent) {
 int runInfo(const Options& o) {
     const SceneDesc desc = patchedScene(o).parse();
     BuildTimings timings;
-    const World world = buildWorld(desc, buildOptions(o), &timings);
+    const BuiltScene scene = buildScene(desc, buildOptions(o), &timings);
+    const World& world = scene.world;
     const Bounds3 b = world.bounds();
     std::printf("scene      %s\n", desc.file.string().c_str());
     std::printf("shapes     %zu\n", world.shapes.size());
@@ -85,7 +86,7 @@ int runInfo(const Options& o) {
                           .c_str()
                     : "",
                 formatBytes(peakResidentBytes()).c_str());
-    std::printf("camera     %s\n", describeCamera(desc.camera).c_str());
+    std::printf("camera     %s\n", describeCamera(scene.camera).c_str());
     std::printf("film       %dx%d, %d spp, integrator %s\n", desc.film.width, desc.film.height,
                 desc.render.spp, desc.render.integrator.c_str());
     std::printf("timing     load %.2f s, bvh %.2f s\n", timings.loadSeconds, timings.bvhSeconds);

@@ -132,8 +132,9 @@ std::vector<PathBenchRow> runPathBench(const PathBenchOptions& options,
         BuildOptions build;
         build.threads = options.threads;
         BuildTimings timings;
-        const World world = buildWorld(desc, build, &timings);
-        const Camera camera = buildCamera(desc.camera, desc.film.width, desc.film.height);
+        const BuiltScene scene = buildScene(desc, build, &timings);
+        const World& world = scene.world;
+        const Camera camera = buildCamera(scene.camera, desc.film.width, desc.film.height);
         const auto integrator = makeIntegrator(desc.render.integrator, world,
                                                buildIntegratorOptions(desc, camera));
         const double setup = secondsSince(setupStart);

@@ -168,13 +168,14 @@ RunReport makeReport(const RenderJob& job, const SceneDesc& desc, const PixelRec
 // The metadata every output carries (docs/output.md): the settings, the
 // fingerprints, and for ray tracing whether the image is partial.
 ImageMetadata imageMetadata(const RenderJob& job, const SceneDocument& document,
-                            const SceneDesc& desc, const Camera& camera, const RenderStats& stats,
+                            const SceneDesc& desc, const CameraDesc& cameraDesc,
+                            const Camera& camera, const RenderStats& stats,
                             const std::string& fingerprint) {
     ImageMetadata metadata;
     metadata.renderSeconds = stats.seconds;
     metadata.spp = desc.render.spp;
     metadata.integrator = desc.render.integrator;
-    metadata.camera = describeCamera(desc.camera);
+    metadata.camera = describeCamera(cameraDesc);
     metadata.worldToCamera = camera.worldToCamera();
     metadata.extra["seed"] = std::to_string(desc.render.seed);
     metadata.extra["scene"] = desc.file.filename().string();
@@ -317,12 +318,13 @@ JobResult runRenderJob(const RenderJob& given, JobObserver& observer) {
         build.bvhStarted = [&] { observer.begin("bvh", 1); };
         build.bvhProgress = [&](double f) { observer.fraction(f); };
     }
-    const World world = buildWorld(desc, build, &result.timings);
+    const BuiltScene scene = buildScene(desc, build, &result.timings);
+    const World& world = scene.world;
     if (!raster) observer.end();  // of the BVH phase
     result.shapeBytes = world.shapeMemoryBytes();
     result.bvhBytes = world.accel->memoryBytes();
 
-    const Camera camera = buildCamera(desc.camera, desc.film.width, desc.film.height);
+    const Camera camera = buildCamera(scene.camera, desc.film.width, desc.film.height);
     const auto integrator =
         makeIntegrator(desc.render.integrator, world, buildIntegratorOptions(desc, camera));
     Film film(desc.film.width, desc.film.height, crop, desc.film.aovs);
@@ -339,7 +341,7 @@ JobResult runRenderJob(const RenderJob& given, JobObserver& observer) {
     output.exrFloat = desc.film.exrFloat;
     output.color = job.color;
     const ImageMetadata metadata =
-        imageMetadata(job, document, desc, camera, result.render, fingerprint);
+        imageMetadata(job, document, desc, scene.camera, camera, result.render, fingerprint);
     for (const fs::path& out : outputs) {
         writeImage(film, out, output, metadata);
         observer.note("wrote " + out.string());

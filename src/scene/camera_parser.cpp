@@ -8,7 +8,6 @@
 #include <string>
 
 #include "strahl/core/error.h"
-#include "strahl/meshio/gltf_camera.h"
 
 namespace strahl::scene_detail {
 
@@ -48,44 +47,26 @@ void parseLens(const JsonValue& v, CameraDesc& c) {
 
 // A camera a glTF file places: "gltf" names the file, "gltf_camera" the camera
 // (an index among the placed cameras, or a camera's or node's name; default 0).
+// The file is read, and the choice checked against it, when the world is built.
 CameraDesc parseGltfCamera(const JsonValue& v, const fs::path& folder) {
     v.requireKeys({"gltf", "gltf_camera", "aperture_radius", "focus_distance"});
     const JsonValue file = v.get("gltf");
-    const fs::path path = resolveExistingFile(folder, file, "glTF file");
-    std::vector<GltfCamera> cameras;
-    try {
-        cameras = loadGltfCameras(path);
-    } catch (const Error& e) {
-        file.fail(e.what());
-    }
-    if (cameras.empty()) file.fail(path.filename().string(), " places no camera in its scene");
-    size_t chosen = 0;
+    GltfCameraChoice choice;
+    choice.file = resolveExistingFile(folder, file, "glTF file");
+    choice.fileAt = file.place();
+    choice.cameraAt = {file.place().label, v.pointer() + "/gltf_camera"};
     if (auto which = v.find("gltf_camera")) {
         if (which->raw().is_string()) {
-            const std::string name = which->string();
-            const auto found = std::find_if(cameras.begin(), cameras.end(),
-                                            [&](const GltfCamera& c) { return c.name == name; });
-            if (found == cameras.end()) {
-                std::string names;
-                for (const GltfCamera& c : cameras) names += (names.empty() ? "" : ", ") + c.name;
-                which->fail("no camera named '", name, "' (the file has: ", names, ")");
-            }
-            chosen = size_t(found - cameras.begin());
+            choice.byName = true;
+            choice.name = which->string();
         } else {
-            chosen = size_t(which->unsignedInteger(cameras.size() - 1));
+            // Any integer here; its range is known once the file is read.
+            choice.index = which->integerOrNone();
+            choice.indexText = which->raw().dump();
         }
     }
-    const GltfCamera& g = cameras[chosen];
     CameraDesc c;
-    c.eye = g.eye;
-    c.back = g.back;
-    c.up = g.up;
-    if (g.orthographic) {
-        c.projection = Projection::Orthographic;
-        c.window = ImageWindow{-g.xmag, g.xmag, -g.ymag, g.ymag};
-    } else {
-        c.fovYDegrees = g.yfovDegrees;
-    }
+    c.gltf = std::move(choice);
     parseLens(v, c);
     return c;
 }

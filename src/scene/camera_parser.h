@@ -1,8 +1,8 @@
 #pragma once
 // Internal to the scene module: the scene file's "camera" (docs/camera.md,
 // docs/scene-format.md#camera): the frame, the projection and its window,
-// the thin lens, or a camera taken from a glTF file (read here, so an error
-// names its place).
+// the thin lens, or the choice of a camera a glTF file places (the file is
+// read when the world is built).
 
 #include <filesystem>
 

@@ -195,6 +195,16 @@ int64_t JsonValue::integer(int64_t lo, int64_t hi) const {
     return result;
 }
 
+std::optional<uint64_t> JsonValue::integerOrNone() const {
+    if (!value_->is_number()) fail("expected an integer, got ", describe());
+    if (value_->is_number_unsigned()) return value_->get<uint64_t>();
+    if (value_->is_number_integer()) return std::nullopt;  // negative
+    const double d = value_->get<double>();
+    if (std::trunc(d) != d) fail("expected an integer, got ", describe());
+    if (d >= 0.0 && d < 0x1p64) return static_cast<uint64_t>(d);
+    return std::nullopt;
+}
+
 uint64_t JsonValue::unsignedInteger(uint64_t hi) const {
     if (!value_->is_number()) fail("expected an integer, got ", describe());
     bool inRange = false;

@@ -18,6 +18,7 @@
 
 #include "strahl/core/error.h"
 #include "strahl/core/math.h"
+#include "strahl/scene/scene_desc.h"
 
 namespace strahl::scene_detail {
 
@@ -47,6 +48,8 @@ public:
 
     const std::string& pointer() const { return pointer_; }
     const nlohmann::json& raw() const { return *value_; }
+    // Where it is, for errors found after parsing (when a file it names is read).
+    ScenePlace place() const { return {*label_, pointer_}; }
 
     // Throws JsonError "<label>: <pointer>: <pieces...>".
     template <typename... Args>
@@ -83,6 +86,8 @@ public:
     int64_t integer(int64_t lo, int64_t hi) const;
     // A non-negative integer no larger than `hi`.
     uint64_t unsignedInteger(uint64_t hi) const;
+    // Any integer: its value if in [0, 2^64), none if negative or larger.
+    std::optional<uint64_t> integerOrNone() const;
 
     // --- vectors and colours -------------------------------------------------
     Vec2 vec2() const;  // [x, y]

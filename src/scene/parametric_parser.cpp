@@ -7,15 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "height_image.h"
 #include "json_surface_parameters.h"
-#include "strahl/geometry/bezier_patches.h"
 #include "strahl/geometry/formula.h"
-#include "strahl/geometry/height_field.h"
 #include "strahl/geometry/parametric_kinds.h"
 #include "strahl/geometry/parametric_formula.h"
 #include "strahl/geometry/revolution_surface.h"
-#include "strahl/meshio/bezier_file.h"
 
 namespace strahl::scene_detail {
 
@@ -104,49 +100,47 @@ ParametricSurfacePtr parseFormula(const JsonValue& v) {
     return build(v, [&] { return makeParametricFormula(text, domain, parameters); });
 }
 
-ParametricSurfacePtr parseSurface(const JsonValue& v, const std::filesystem::path& folder) {
+// The shape's "surface": built now, or for a file kind named for the builder.
+void parseSurface(const JsonValue& v, const std::filesystem::path& folder, ParametricDesc& p) {
     if (!v.raw().is_object()) v.fail("expected a surface object, got ", v.describe());
     const std::string type = v.get("type").oneOf(surfaceTypes());
-    if (const ParametricKind* kind = findParametricKind(type))
-        return kind->parse(JsonSurfaceParameters(v, type, &number));
+    if (const ParametricKind* kind = findParametricKind(type)) {
+        p.surface = kind->parse(JsonSurfaceParameters(v, type, &number));
+        return;
+    }
     if (type == "revolution") {
         v.requireKeys({"type", "profile"});
         const JsonValue list = v.get("profile");
         std::vector<glm::dvec2> profile;
         for (size_t i = 0; i < list.size(); ++i) profile.push_back(glm::dvec2(list.at(i).vec2()));
-        return build(v, [&] { return makeSurfaceOfRevolution(std::move(profile)); });
+        p.surface = build(v, [&] { return makeSurfaceOfRevolution(std::move(profile)); });
+        return;
     }
     if (type == "bezier") {
         v.requireKeys({"type", "file", "reverse"});
         const JsonValue file = v.get("file");
-        const std::filesystem::path path = resolvePath(folder, file);
+        ParametricFile f;
+        f.kind = ParametricFile::Kind::BezierPatches;
+        f.file = resolvePath(folder, file);
+        f.at = file.place();
         const auto reverse = v.find("reverse");
-        const bool swap = reverse && reverse->boolean();
-        return build(file, [&] {
-            std::vector<BezierPatch> patches = loadBezierFile(path);
-            // Swapping u and v in every patch turns ∂u f × ∂v f around (the
-            // classic teapot data's normals point into the pot).
-            if (swap)
-                for (BezierPatch& patch : patches)
-                    for (int i = 0; i < 4; ++i)
-                        for (int j = i + 1; j < 4; ++j)
-                            std::swap(patch.points[size_t(4 * i + j)], patch.points[size_t(4 * j + i)]);
-            return makeBezierPatchSet(std::move(patches), path.filename().string());
-        });
+        f.reverse = reverse && reverse->boolean();
+        p.file = std::move(f);
+        return;
     }
     if (type == "heightfield") {
         v.requireKeys({"type", "image", "size", "height"});
         const JsonValue image = v.get("image");
-        const std::filesystem::path path = resolvePath(folder, image);
-        Vec2 size(1.0f);
-        if (auto s = v.find("size")) size = s->vec2();
-        const double height = number(v, "height", 1.0);
-        return build(image, [&] {
-            HeightImage h = loadHeightImage(path);
-            return makeHeightField(std::move(h.heights), h.columns, h.rows, size.x, size.y, height);
-        });
+        ParametricFile f;
+        f.kind = ParametricFile::Kind::HeightImage;
+        f.file = resolvePath(folder, image);
+        f.at = image.place();
+        if (auto s = v.find("size")) f.size = s->vec2();
+        f.height = number(v, "height", 1.0);
+        p.file = std::move(f);
+        return;
     }
-    return parseFormula(v);
+    p.surface = parseFormula(v);
 }
 
 // "segments": n, or [nu, nv].
@@ -170,7 +164,7 @@ double positive(const JsonValue& v) {
 
 ParametricDesc parseParametricShape(const JsonValue& shape, const std::filesystem::path& folder) {
     ParametricDesc p;
-    p.surface = parseSurface(shape.get("surface"), folder);
+    parseSurface(shape.get("surface"), folder, p);
     if (auto mode = shape.find("mode"))
         p.mode = mode->oneOf({"tessellated", "direct"}) == "direct" ? ParametricMode::Direct
                                                                      : ParametricMode::Tessellated;

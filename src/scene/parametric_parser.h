@@ -2,10 +2,11 @@
 // Internal to the scene module: a "parametric" shape — its "surface" (a
 // built-in, Bézier patches from a file, a height field from an image, or three
 // formulas in u and v), its "mode" (tessellated or direct) and that mode's
-// settings. The surface is built here, at parse time, so a bad formula, patch
-// file or image is reported with its place in the scene file before any
-// loading starts. Documented in docs/scene-format.md and
-// docs/parametric-surfaces.md.
+// settings. A surface of formulas or a built-in is built here, at parse time,
+// so a bad formula is reported with its place in the scene file before any
+// loading starts; Bézier patch files and height images are named here and
+// read when the world is built (parametric_files.h). Documented in
+// docs/scene-format.md and docs/parametric-surfaces.md.
 
 #include <filesystem>
 

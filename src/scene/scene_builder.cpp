@@ -13,6 +13,7 @@
 #include "instance_flattening.h"
 #include "light_builder.h"
 #include "material_builder.h"
+#include "scene_files.h"
 #include "strahl/core/error.h"
 #include "strahl/core/process_memory.h"
 #include "strahl/meshio/mesh_file.h"
@@ -26,12 +27,6 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// Reads (or copies) one shape's mesh in object space with its file materials.
-LoadedMesh loadShape(const ShapeDesc& shape) {
-    if (shape.file.empty()) return LoadedMesh{shape.inlineMesh, {}};
-    return loadMeshFile(shape.file);
 }
 
 // True when some triangle has a non-zero area. A mesh whose triangles are all
@@ -66,9 +61,11 @@ std::shared_ptr<const UserShape> makeImplicitShape(const SceneDesc& desc, const 
 // image at an object-space point: a pixel's footprint grows with the distance
 // from the eye (perspective) or is constant (orthographic). Dividing by the
 // transform's largest stretch keeps the bound conservative in world space.
-std::function<double(const DVec3&)> edgeLengthFromCamera(const SceneDesc& desc, const Mat4& toWorld,
-                                                         double pixels, double extent) {
-    const Camera camera = buildCamera(desc.camera, desc.film.width, desc.film.height);
+std::function<double(const DVec3&)> edgeLengthFromCamera(const SceneDesc& desc,
+                                                         const CameraDesc& cameraDesc,
+                                                         const Mat4& toWorld, double pixels,
+                                                         double extent) {
+    const Camera camera = buildCamera(cameraDesc, desc.film.width, desc.film.height);
     const ImageWindow& w = camera.window();
     const double pixelSize = static_cast<double>(w.t - w.b) / desc.film.height;
     const bool perspective = camera.projection() == Projection::Perspective;
@@ -94,35 +91,37 @@ struct TessellatedShape {
     std::shared_ptr<const TessellatedSurface> surface;
 };
 
-TessellatedShape tessellateShape(const SceneDesc& desc, const ShapeDesc& shape) {
+TessellatedShape tessellateShape(const SceneDesc& desc, const CameraDesc& camera,
+                                 const ShapeDesc& shape, const ParametricSurfacePtr& surface) {
     const ParametricDesc& p = shape.parametric;
     try {
-        const double extent = parametricExtent(*p.surface);
+        const double extent = parametricExtent(*surface);
         ParametricGridOptions grid;
         const bool bounded = p.maxError > 0.0 || p.maxEdgePixels > 0.0;
         grid.maxChordError = p.maxError;
         if (p.maxEdgePixels > 0.0)
-            grid.maxEdgeLength = edgeLengthFromCamera(desc, shape.transform, p.maxEdgePixels, extent);
+            grid.maxEdgeLength =
+                edgeLengthFromCamera(desc, camera, shape.transform, p.maxEdgePixels, extent);
         if (p.segmentsU > 0) {
             grid.initialSegmentsU = p.segmentsU;
             grid.initialSegmentsV = p.segmentsV;
         } else if (!bounded) {
             grid.maxChordError = kDefaultRelativeError * extent;
         }
-        Tessellation t = tessellateParametric(*p.surface, buildParametricGrid(*p.surface, grid), p.normals);
+        Tessellation t = tessellateParametric(*surface, buildParametricGrid(*surface, grid), p.normals);
         TessellatedShape out;
         out.mesh.mesh = std::move(t.mesh);
-        out.surface = std::make_shared<TessellatedSurface>(p.surface, std::move(t), shape.transform, p.normals);
+        out.surface = std::make_shared<TessellatedSurface>(surface, std::move(t), shape.transform, p.normals);
         return out;
     } catch (const Error& e) {
         fail(shapeSource(desc, shape), ": ", e.what());
     }
 }
 
-std::shared_ptr<const UserShape> makeDirectShape(const SceneDesc& desc, const ShapeDesc& shape) {
+std::shared_ptr<const UserShape> makeDirectShape(const SceneDesc& desc, const ShapeDesc& shape,
+                                                 const ParametricSurfacePtr& surface) {
     try {
-        return std::make_shared<ParametricShape>(shape.parametric.surface, shape.transform,
-                                                 shape.parametric.direct);
+        return std::make_shared<ParametricShape>(surface, shape.transform, shape.parametric.direct);
     } catch (const Error& e) {
         fail(shapeSource(desc, shape), ": ", e.what());
     }
@@ -182,9 +181,10 @@ void placeInstances(const SceneDesc& desc, const scene_detail::FlatInstances& fl
 
 }  // namespace
 
-World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTimings* timings) {
+BuiltScene buildScene(const SceneDesc& desc, const BuildOptions& options, BuildTimings* timings) {
     const auto loadStart = Clock::now();
-    World world;
+    BuiltScene built;
+    World& world = built.world;
     world.background = desc.background;
 
     // Material table: 0 is the built-in default, then the scene's own, then the
@@ -202,7 +202,13 @@ World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTiming
     const scene_detail::FlatInstances flat = scene_detail::flattenInstances(desc);
     const std::vector<ShapeJob> jobs = collectShapeJobs(desc, flat, world);
 
-    // Load every mesh file in parallel; the first error (in job order) wins so
+    // Every file once, in parallel; then the camera they may give.
+    std::vector<const ShapeDesc*> shapes;
+    for (const ShapeJob& job : jobs) shapes.push_back(job.desc);
+    scene_detail::SceneFiles files = scene_detail::readSceneFiles(desc, shapes, options.threads);
+    built.camera = scene_detail::resolveCamera(desc, files.cameras);
+
+    // Prepare every shape in parallel; the first error (in job order) wins so
     // the message does not depend on thread timing.
     std::vector<LoadedMesh> loaded(jobs.size());
     std::vector<std::shared_ptr<const UserShape>> userShapes(jobs.size());
@@ -217,19 +223,23 @@ World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTiming
                     userShapes[i] = makeImplicitShape(desc, shape);
                     return;
                 }
-                const bool direct = shape.kind == ShapeKind::Parametric &&
-                                    shape.parametric.mode == ParametricMode::Direct;
-                if (direct) {
-                    userShapes[i] = makeDirectShape(desc, shape);
-                    return;
-                }
                 LoadedMesh mesh;
                 if (shape.kind == ShapeKind::Parametric) {
-                    TessellatedShape t = tessellateShape(desc, shape);
+                    const ParametricDesc& p = shape.parametric;
+                    const ParametricSurfacePtr surface =
+                        p.file ? scene_detail::surfaceFromFile(desc, *p.file, std::move(files.shapes[i]))
+                               : p.surface;
+                    if (p.mode == ParametricMode::Direct) {
+                        userShapes[i] = makeDirectShape(desc, shape, surface);
+                        return;
+                    }
+                    TessellatedShape t = tessellateShape(desc, built.camera, shape, surface);
                     mesh = std::move(t.mesh);
                     tessellated[i] = std::move(t.surface);
+                } else if (shape.file.empty()) {
+                    mesh = LoadedMesh{shape.inlineMesh, {}};
                 } else {
-                    mesh = loadShape(shape);
+                    mesh = std::move(files.shapes[i].mesh);
                 }
                 mesh.mesh.transform(shape.transform);
                 mesh.mesh.validate(shapeSource(desc, shape));
@@ -309,10 +319,17 @@ World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTiming
     }
     if (timings) timings->bvhSeconds = secondsSince(bvhStart);
     world.prepareLights();
-    return world;
+    return built;
+}
+
+World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTimings* timings) {
+    return std::move(buildScene(desc, options, timings).world);
 }
 
 Camera buildCamera(const CameraDesc& desc, int width, int height) {
+    if (desc.gltf)
+        fail(desc.gltf->fileAt.label, ": ", desc.gltf->fileAt.pointer,
+             ": the camera is read from the glTF file when the scene is built (buildScene)");
     const CameraFrame frame = desc.back ? CameraFrame::fromBackUp(desc.eye, *desc.back, desc.up)
                                         : CameraFrame::lookAt(desc.eye, desc.lookAt.value_or(Vec3(0.0f)),
                                                               desc.up);

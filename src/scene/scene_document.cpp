@@ -18,7 +18,9 @@
 #include <nlohmann/json.hpp>
 
 #include "json_reader.h"
+#include "scene_formats.h"
 #include "scene_json.h"
+#include "scene_place.h"
 #include "strahl/core/error.h"
 #include "strahl/core/hash.h"
 
@@ -102,7 +104,7 @@ SceneDocument::~SceneDocument() = default;
 SceneDocument SceneDocument::fromText(const std::string& text, const fs::path& file) {
     auto impl = std::make_unique<Impl>();
     impl->label = file.string();
-    impl->document = scene_detail::parseJsonText(text, impl->label);
+    impl->document = scene_detail::sceneFormatOf(file).toDocument(text, file, impl->label);
     impl->file = fs::absolute(file).lexically_normal();
     return SceneDocument(std::move(impl));
 }
@@ -164,18 +166,36 @@ const std::vector<ScenePatch>& SceneDocument::patches() const { return impl_->pa
 const fs::path& SceneDocument::file() const { return impl_->file; }
 
 SceneDesc SceneDocument::parse() const {
+    std::vector<std::pair<std::string, std::string>> patches;
+    for (const ScenePatch& p : impl_->patches) patches.emplace_back(p.pointer, p.origin);
     try {
-        return scene_detail::parseSceneJson(impl_->document, impl_->file, impl_->label);
+        SceneDesc desc = scene_detail::parseSceneJson(impl_->document, impl_->file, impl_->label);
+        desc.patches = std::move(patches);
+        return desc;
     } catch (const scene_detail::JsonError& e) {
         // Patches at the error's place, inside it or above it are what the
         // user may have to change.
-        std::string origins;
-        for (const ScenePatch& p : impl_->patches)
-            if (!e.pointer().empty() && related(p.pointer, e.pointer()))
-                origins += (origins.empty() ? "" : ", ") + p.origin;
+        const std::string origins = scene_detail::patchOrigins(patches, e.pointer());
         if (origins.empty()) throw;
         fail(e.what(), " (set by ", origins, ")");
     }
+}
+
+std::string scene_detail::patchOrigins(
+    const std::vector<std::pair<std::string, std::string>>& patches, const std::string& pointer) {
+    std::string origins;
+    for (const auto& [patched, origin] : patches)
+        if (!pointer.empty() && related(patched, pointer))
+            origins += (origins.empty() ? "" : ", ") + origin;
+    return origins;
+}
+
+void scene_detail::failAt(const SceneDesc& desc, const ScenePlace& at, const std::string& message) {
+    const std::string text =
+        concat(at.label, ": ", at.pointer.empty() ? "top level" : at.pointer, ": ", message);
+    const std::string origins = patchOrigins(desc.patches, at.pointer);
+    if (origins.empty()) throw Error(text);
+    fail(text, " (set by ", origins, ")");
 }
 
 uint64_t SceneDocument::hash(std::initializer_list<std::string_view> without) const {

@@ -2,11 +2,10 @@
 // the camera, film and render settings, materials and lights in their own
 // *_parser.cpp files. The format is documented key by key in
 // docs/scene-format.md; every value read is checked, and anything rejected is
-// named by its JSON pointer. Mesh, texture and environment files
-// are only checked to exist; three kinds of file are read here, because their
-// content is part of the description and their errors must name its place: a
-// glTF file's cameras (a camera chosen from it), Bézier patch files (.bpt) and
-// height images of parametric shapes (whose surfaces are built at parse time).
+// named by its JSON pointer. No other file is read here: mesh, texture and
+// environment files, a glTF camera's file, Bézier patch files and height
+// images are named (and most checked to exist) with their place, and read
+// when the world is built (scene_builder.h), whose errors name the same place.
 
 #include <algorithm>
 #include <cmath>
@@ -27,6 +26,7 @@
 #include "scene_json.h"
 #include "transform_parser.h"
 #include "strahl/core/error.h"
+#include "strahl/meshio/mesh_format.h"
 #include "strahl/scene/scene_desc.h"
 
 namespace strahl {
@@ -34,7 +34,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using scene_detail::JsonValue;
-using scene_detail::hasExtension;
 using scene_detail::parseCamera;
 using scene_detail::parseFilm;
 using scene_detail::parseLight;
@@ -53,10 +52,9 @@ void checkMeshFile(const JsonValue& value, const fs::path& path) {
         value.fail("no such file '", given, "' (looked at ", path.string(), ")");
     if (!fs::is_regular_file(path, ec))
         value.fail("'", given, "' is not a regular file (looked at ", path.string(), ")");
-    constexpr std::string_view kMeshExtensions[] = {".obj", ".ply", ".gltf", ".glb"};
-    if (!hasExtension(path, kMeshExtensions))
-        value.fail("'", given,
-                   "' is not a supported mesh format (extensions: .obj, .ply, .gltf, .glb)");
+    if (!findMeshFormat(path))
+        value.fail("'", given, "' is not a supported mesh format (extensions: ",
+                   meshExtensionList(", ", ", "), ")");
 }
 
 TriangleMesh parseInlineMesh(const JsonValue& v, const std::string& label) {

@@ -37,8 +37,9 @@ inline Film renderFilm(const SceneDesc& desc, const RenderSetup& setup = {}) {
     BuildOptions build;
     build.accel = setup.accel;
     build.threads = setup.threads;
-    const World world = buildWorld(desc, build);
-    const Camera camera = buildCamera(desc.camera, desc.film.width, desc.film.height);
+    const BuiltScene scene = buildScene(desc, build);
+    const World& world = scene.world;
+    const Camera camera = buildCamera(scene.camera, desc.film.width, desc.film.height);
     IntegratorOptions integratorOptions = buildIntegratorOptions(desc, camera);
     if (setup.sampling) integratorOptions.sampling = *setup.sampling;
     const auto integrator =

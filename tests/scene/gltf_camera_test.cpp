@@ -10,6 +10,7 @@
 
 #include "strahl/core/error.h"
 #include "strahl/meshio/gltf_camera.h"
+#include "strahl/scene/scene_builder.h"
 #include "strahl/scene/scene_desc.h"
 #include "test_support.h"
 
@@ -39,6 +40,12 @@ const std::string kCameras = R"({
 
 const std::string kShapes = R"("shapes": [{"type": "mesh",
     "positions": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "indices": [0, 1, 2]}])";
+
+BuildOptions naive() {
+    BuildOptions options;
+    options.accel = AccelKind::Naive;
+    return options;
+}
 
 void expectNear(Vec3 a, Vec3 b) {
     EXPECT_NEAR(a.x, b.x, 1e-5f);
@@ -70,9 +77,10 @@ TEST(GltfCamera, ASceneFilePicksOneByIndexOrName) {
     const fs::path dir = test::scratchDir("gltf-camera-scene");
     test::writeFile(dir / "cams.gltf", kCameras);
     const auto camera = [&](const std::string& keys) {
-        return parseSceneText(R"({"camera": {"gltf": "cams.gltf")" + keys + "}, " + kShapes + "}",
-                              dir / "scene.json")
-            .camera;
+        const SceneDesc desc = parseSceneText(
+            R"({"camera": {"gltf": "cams.gltf")" + keys + "}, " + kShapes + "}", dir / "scene.json");
+        EXPECT_TRUE(desc.camera.gltf.has_value());  // read when the scene is built
+        return buildScene(desc, naive()).camera;
     };
     const CameraDesc first = camera("");
     EXPECT_EQ(first.projection, Projection::Perspective);
@@ -94,8 +102,11 @@ TEST(GltfCamera, BadCamerasAndChoicesNameThePlace) {
     const fs::path dir = test::scratchDir("gltf-camera-bad");
     test::writeFile(dir / "cams.gltf", kCameras);
     const auto sceneError = [&](const std::string& camera) {
-        return test::errorMessage(
-            [&] { parseSceneText(R"({"camera": )" + camera + "}", dir / "scene.json"); });
+        return test::errorMessage([&] {
+            buildScene(parseSceneText(R"({"camera": )" + camera + ", " + kShapes + "}",
+                                      dir / "scene.json"),
+                       naive());
+        });
     };
     EXPECT_THAT(sceneError(R"({"gltf": "cams.gltf", "gltf_camera": 2})"),
                 HasSubstr("scene.json: /camera/gltf_camera: "));

@@ -29,8 +29,14 @@ SceneDesc parseIn(const std::filesystem::path& file, const std::string& text) {
 
 SceneDesc parse(const std::string& text) { return parseIn(test::sourceDir() / "scenes" / "scene.json", text); }
 
+// The error of parsing the scene or, for files the surface names (read by
+// the builder), of building it.
 std::string errorOf(const std::string& surface, const std::string& extra = "") {
-    return test::errorMessage([&] { parse(sceneWith(parametric(surface, extra))); });
+    return test::errorMessage([&] {
+        BuildOptions naive;
+        naive.accel = AccelKind::Naive;
+        buildWorld(parse(sceneWith(parametric(surface, extra))), naive);
+    });
 }
 
 const char* kSurfaces[] = {
@@ -126,7 +132,9 @@ TEST(ParametricScene, MalformedPatchFilesNameFileAndLine) {
     const auto dir = test::scratchDir("bad-patches");
     test::writeFile(dir / "bad.bpt", "1\n3 3\n0 0 0\n1 0 0\n");  // truncated after 2 of 16 points
     const std::string message = test::errorMessage([&] {
-        parseIn(dir / "scene.json", sceneWith(parametric(R"({"type": "bezier", "file": "bad.bpt"})")));
+        buildWorld(parseIn(dir / "scene.json",
+                           sceneWith(parametric(R"({"type": "bezier", "file": "bad.bpt"})"))),
+                   BuildOptions{});
     });
     EXPECT_TRUE(contains(message, "/shapes/0/surface/file")) << message;
     EXPECT_TRUE(contains(message, "bad.bpt:")) << message;

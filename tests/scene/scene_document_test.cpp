@@ -107,6 +107,19 @@ TEST(ScenePatch, AParseErrorAtAPatchedPlaceNamesThePatch) {
               "scene.json: /film/width: must be between 1 and 32768, got 0");
 }
 
+// Scene files are read by the format their extension names
+// (src/scene/scene_formats.h); strahl's JSON takes every extension no other
+// format claims, in any case.
+TEST(SceneFormats, JsonIsTheDefaultForAnyExtension) {
+    for (const char* name : {"scene.json", "scene.JSON", "scene.strahl", "scene"}) {
+        const SceneDesc desc = SceneDocument::fromText(kScene, name).parse();
+        EXPECT_EQ(desc.film.width, 16) << name;
+    }
+    EXPECT_TRUE(test::contains(
+        test::errorMessage([] { SceneDocument::fromText("{ broken", "scene.Json"); }),
+        "scene.Json:1:"));
+}
+
 TEST(SceneHash, IgnoresCommentsAndSpacingButNotValues) {
     const uint64_t h = document().hash();
     EXPECT_EQ(SceneDocument::fromText(json::parse(kScene, nullptr, true, true).dump(4), "x.json")

@@ -1,8 +1,11 @@
 #pragma once
-// From SceneDesc to what the renderer reads: meshes loaded (in parallel),
-// transformed to world space, validated and padded for Embree; implicit
-// surfaces placed and cut into cells; materials resolved to one table; lights;
-// the camera; the accelerator (Embree's BVH, or the naive reference loop).
+// From SceneDesc to what the renderer reads: every file the scene names read
+// once, in parallel (meshes, a glTF file's cameras, Bézier patch files, height
+// images); meshes transformed to world space, validated and padded for Embree;
+// implicit surfaces placed and cut into cells; parametric surfaces tessellated
+// or prepared for direct intersection; materials resolved to one table;
+// lights; the camera; the accelerator (Embree's BVH, or the naive reference
+// loop).
 
 #include <functional>
 
@@ -38,17 +41,27 @@ struct BuildTimings {
     double bvhSeconds = 0.0;   // building the acceleration structure (0 for naive)
 };
 
+// The world and the camera as the files made them (a glTF camera resolved).
+struct BuiltScene {
+    World world;
+    CameraDesc camera;
+};
+
 // Throws strahl::Error naming the shape (file or JSON pointer) on any failure.
+BuiltScene buildScene(const SceneDesc& desc, const BuildOptions& options,
+                      BuildTimings* timings = nullptr);
+// buildScene's world alone, for scenes whose camera is not needed or not from
+// a file.
 World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTimings* timings = nullptr);
 
 // "embree" or "naive"; throws strahl::Error listing the choices otherwise.
 AccelKind accelFromName(const std::string& name);
 const char* accelName(AccelKind kind);
 
-// The camera for an image of width x height pixels.
+// The camera for an image of width x height pixels. A camera still to be read
+// from a glTF file is an error: take BuiltScene::camera.
 Camera buildCamera(const CameraDesc& desc, int width, int height);
 
-// A short human-readable description, e.g. "perspective eye (0,1,4) fov 45".
 // The film's pixel filter.
 PixelFilter buildPixelFilter(const FilmDesc& film);
 
@@ -56,6 +69,7 @@ PixelFilter buildPixelFilter(const FilmDesc& film);
 // the camera's pixels (texture filtering).
 IntegratorOptions buildIntegratorOptions(const SceneDesc& desc, const Camera& camera);
 
+// A short human-readable description, e.g. "perspective eye (0,1,4) fov 45".
 std::string describeCamera(const CameraDesc& desc);
 
 }  // namespace strahl

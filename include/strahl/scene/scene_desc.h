@@ -1,8 +1,9 @@
 #pragma once
-// SceneDesc: the scene file as plain data, before meshes, textures and images
-// are loaded and the world is built (parametric surfaces and glTF cameras are
-// read while parsing: src/scene/scene_parser.cpp says why).
-// Every element remembers where it came from (a JSON pointer such as
+// SceneDesc: the scene file as plain data. Parsing reads the scene file and
+// nothing else: the files it names (meshes, a glTF file's cameras, Bézier
+// patch files, height images, textures, environment images) are only checked
+// to exist, and are read when the world is built (scene_builder.h), once per
+// file. Every element remembers where it came from (a JSON pointer such as
 // "/shapes/2") so that later stages can name the place in their errors.
 // The file format is documented key by key in docs/scene-format.md.
 
@@ -10,6 +11,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "strahl/camera/camera.h"
@@ -24,6 +26,28 @@
 
 namespace strahl {
 
+// A value of the scene document, for errors found when the file it names is
+// read: "<label>: <pointer>: <message>", as the parser words its own errors.
+struct ScenePlace {
+    std::string label;    // the scene file as the user gave it
+    std::string pointer;  // e.g. "/camera/gltf"
+};
+
+// A camera a glTF file places ("camera": {"gltf": FILE, "gltf_camera": ...}):
+// its frame and projection are read from the file when the world is built
+// (buildScene resolves it); the lens keys are the scene file's.
+struct GltfCameraChoice {
+    std::filesystem::path file;  // resolved; checked to exist
+    // By name, or by index among the placed cameras (default 0); an index
+    // that is negative or past 2^64 is kept as written, to be refused with
+    // the count of cameras when the file is read.
+    bool byName = false;
+    std::string name;
+    std::optional<uint64_t> index = 0;
+    std::string indexText = "0";   // the index as written, for messages
+    ScenePlace fileAt, cameraAt;  // "/camera/gltf", "/camera/gltf_camera"
+};
+
 struct CameraDesc {
     Projection projection = Projection::Perspective;
     Vec3 eye{0.0f, 0.0f, 5.0f};
@@ -35,6 +59,9 @@ struct CameraDesc {
     std::optional<ImageWindow> window;  // default: fov 45 deg (persp.), [-1,1]^2 (ortho.)
     float apertureRadius = 0.0f;         // thin lens; 0: pinhole
     std::optional<float> focusDistance;  // default: the focal distance
+    // Set: the frame and projection above are still to be read from a glTF
+    // file (buildScene fills them and clears this).
+    std::optional<GltfCameraChoice> gltf;
 };
 
 // Image size limits, for the scene file and the command line alike: each side
@@ -73,10 +100,25 @@ enum class ShapeKind { Mesh, Implicit, Parametric, Instance };
 
 enum class ParametricMode { Tessellated, Direct };
 
-// A parametric shape: its surface (built at parse time, so a bad formula or
-// patch file is reported with its place) and how it is rendered.
+// A parametric surface whose data is a file, read when the world is built:
+// Bézier patches (.bpt; `reverse` swaps u and v in every patch) or a height
+// image (`size` in x and y, `height` of a value of 1).
+struct ParametricFile {
+    enum class Kind { BezierPatches, HeightImage };
+    Kind kind = Kind::BezierPatches;
+    std::filesystem::path file;  // resolved
+    bool reverse = false;
+    Vec2 size{1.0f};
+    double height = 1.0;
+    ScenePlace at;  // "/shapes/0/surface/file" or ".../image"
+};
+
+// A parametric shape: its surface (built at parse time, so a bad formula is
+// reported with its place; from `file` when the world is built) and how it is
+// rendered.
 struct ParametricDesc {
-    ParametricSurfacePtr surface;
+    ParametricSurfacePtr surface;    // null while `file` is to be read
+    std::optional<ParametricFile> file;
     ParametricMode mode = ParametricMode::Tessellated;
     // Tessellated: uniform segments per patch and direction (the start of the
     // refinement when a bound is also given), and the adaptive bounds: chordal
@@ -140,6 +182,9 @@ struct SceneDesc {
     std::vector<GroupDesc> groups;
     std::vector<ShapeDesc> shapes;
     std::vector<LightDesc> lights;
+    // The patches applied to the document (pointer, origin such as "--spp 4"),
+    // so errors found after parsing name them as the parser's errors do.
+    std::vector<std::pair<std::string, std::string>> patches;
 };
 
 // Parse a scene file (SceneDocument::read(file).parse(), scene_document.h).

@@ -3,7 +3,9 @@
 // command-line overrides apply, as JSON-pointer assignments ("scene patches",
 // `strahl render --set /render/spp=64`), and what a render's fingerprint
 // hashes, so that every setting the document holds is part of it without a
-// hand-kept list.
+// hand-kept list. A scene file in another renderer's format becomes such a
+// document through its importer (src/scene/scene_formats.h), chosen by the
+// file's extension; strahl's JSON is the default.
 //
 // parseSceneFile(file) is SceneDocument::read(file).parse().
 
