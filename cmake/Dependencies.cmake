@@ -7,6 +7,7 @@ find_package(OpenEXR REQUIRED)
 # Debian ships OpenColorIOConfig.cmake directly in /usr/share/cmake.
 find_package(OpenColorIO 2.1 REQUIRED PATHS /usr/share/cmake /usr/lib/cmake)
 find_package(glm REQUIRED)
+find_package(pugixml REQUIRED)  # the Mitsuba 3 XML importer (scene/)
 find_package(TBB REQUIRED)
 find_package(nlohmann_json 3.10 REQUIRED)
 find_package(CLI11 REQUIRED)

@@ -29,6 +29,7 @@
 #include "strahl/geometry/formula.h"
 #include "strahl/meshio/mesh_file.h"
 #include "strahl/scene/scene_desc.h"
+#include "strahl/scene/scene_document.h"
 
 namespace strahl::fuzz {
 
@@ -79,6 +80,17 @@ inline void quietMeshWarnings() {
 // The input is a scene file's text.
 inline void runSceneJson(std::string_view input) {
     const SceneDesc scene = parseSceneText(std::string(input), scratch() / "scene.json");
+    (void)scene;
+}
+
+// ---- Mitsuba 3 scenes ------------------------------------------------------------
+
+// The input is a Mitsuba 3 scene file's text, imported into a strahl scene
+// document and parsed (src/scene/mitsuba_*.cpp). File names it gives resolve
+// in the scratch folder, where nothing is.
+inline void runMitsubaXml(std::string_view input) {
+    const SceneDesc scene =
+        SceneDocument::fromText(std::string(input), scratch() / "scene.xml").parse();
     (void)scene;
 }
 

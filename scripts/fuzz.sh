@@ -13,7 +13,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="$root/build-fuzz"
-all_targets=(fuzz_scene_json fuzz_ply fuzz_obj fuzz_gltf fuzz_formula)
+all_targets=(fuzz_scene_json fuzz_mitsuba_xml fuzz_ply fuzz_obj fuzz_gltf fuzz_formula)
 
 seconds=30
 targets=()

@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
                         return runRender(options);
                     });
                 return runRender(options);
+            case Command::Convert: return runConvert(options);
             case Command::Bench: return runBench(options.bench);
             case Command::Assemble: return runAssemble(options.assemble);
             case Command::Merge: return runMerge(options.merge);

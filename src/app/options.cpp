@@ -21,11 +21,14 @@ namespace {
 constexpr const char* kDescription =
     "strahl " STRAHL_VERSION " - an Embree-accelerated ray tracer.\n\n"
     "  strahl render SCENE.json -o image.exr -o image.png   render a scene\n"
+    "  strahl render scene.xml -D spp=64 -o image.exr        render a Mitsuba 3 scene\n"
+    "  strahl convert scene.xml -o scene.json                 a Mitsuba 3 scene as strahl JSON\n"
     "  strahl info SCENE.json                                primitive counts, bounds, memory\n"
     "  strahl bench --out results.csv --plot cost.svg        Embree vs naive vs raster\n"
     "  strahl assemble r*.exr -o image.exr                   stitch --region renders\n"
     "  strahl merge part*.exr -o image.exr                   add up --sample-offset renders\n\n"
-    "The scene format is documented in docs/scene-format.md, the options in docs/cli.md.\n"
+    "The scene format is documented in docs/scene-format.md (Mitsuba 3 scenes: docs/mitsuba.md),\n"
+    "the options in docs/cli.md.\n"
     "Exit status: 0 success, 1 error (bad scene, mesh or output), 2 bad command line.";
 
 // "--crop X0,Y0,X1,Y1" in pixels, half-open, y = 0 at the top.
@@ -121,7 +124,32 @@ void addSetOption(CLI::App& command, Options& o) {
         });
 }
 
+// -D NAME=VALUE (repeatable): the value of a Mitsuba scene's <default name=NAME>
+// parameter, as Mitsuba's own -D (docs/mitsuba.md).
+void addDefineOption(CLI::App& command, Options& o) {
+    command
+        .add_option("-D,--define", o.defines,
+                    "Mitsuba 3 scenes: give the <default> parameter NAME the value VALUE, as "
+                    "mitsuba -D does (repeat)")
+        ->type_name("NAME=VALUE")
+        ->check([](const std::string& argument) {
+            const size_t equals = argument.find('=');
+            if (equals == std::string::npos || equals == 0)
+                return "'" + argument + "': expected NAME=VALUE, such as spp=64";
+            return std::string();
+        });
+}
+
 }  // namespace
+
+SceneDefines sceneDefines(const Options& o) {
+    SceneDefines defines;
+    for (const std::string& d : o.defines) {
+        const size_t equals = d.find('=');
+        defines[d.substr(0, equals)] = d.substr(equals + 1);  // a later -D wins
+    }
+    return defines;
+}
 
 std::optional<int> parseOptions(int argc, char** argv, Options& o) {
     CLI::App app{kDescription, "strahl"};
@@ -133,7 +161,9 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
     app.require_subcommand(1);
 
     CLI::App* render = app.add_subcommand("render", "Render a scene to one or more image files");
-    render->add_option("scene", o.scene, "Scene file (JSON, see docs/scene-format.md)")
+    render->add_option("scene", o.scene,
+                       "Scene file: strahl JSON (docs/scene-format.md) or Mitsuba 3 XML "
+                       "(.xml, docs/mitsuba.md)")
         ->required();
     render->add_option("-o,--output", o.outputs,
                        "Output image; repeat for several. .exr is scene-linear with AOVs; "
@@ -169,6 +199,7 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
         ->check(CLI::IsMember(std::vector<std::string>(aovNames().begin(), aovNames().end())));
     render->add_flag("--exr-float", o.exrFloat, "Write 32-bit float EXR channels instead of half");
     addSetOption(*render, o);
+    addDefineOption(*render, o);
     render->add_flag("-q,--quiet", o.quiet, "No progress display, summary or mesh warnings");
     std::string packets = "auto";
     render->add_option("--packets", packets,
@@ -239,7 +270,19 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
     CLI::App* info = app.add_subcommand("info", "Print primitive counts, bounds and memory");
     info->add_option("scene", o.scene, "Scene file")->required();
     addSetOption(*info, o);
+    addDefineOption(*info, o);
     addMemoryOptions(*info, o);
+
+    CLI::App* convert = app.add_subcommand(
+        "convert", "Write a scene (a Mitsuba 3 .xml) as the strahl JSON scene it imports as");
+    convert->add_option("scene", o.scene, "Scene file (Mitsuba 3 .xml or strahl JSON)")->required();
+    convert->add_option("-o,--output", o.convertOutput,
+                        "The strahl JSON scene to write; its file names are relative to its "
+                        "folder")
+        ->required();
+    addSetOption(*convert, o);
+    addDefineOption(*convert, o);
+    convert->add_flag("-q,--quiet", o.quiet, "No line saying where the scene went");
 
     CLI::App* bench = addBenchCommand(app, o.bench);
     CLI::App* assemble = addAssembleCommand(app, o.assemble);
@@ -270,6 +313,7 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
         return code == 0 ? 0 : 2;
     }
     o.command = render->parsed()     ? Command::Render
+                : convert->parsed()  ? Command::Convert
                 : bench->parsed()    ? Command::Bench
                 : assemble->parsed() ? Command::Assemble
                 : merge->parsed()    ? Command::Merge

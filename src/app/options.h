@@ -14,10 +14,11 @@
 #include "strahl/core/pixel_rect.h"
 #include "strahl/film/display_transform.h"
 #include "strahl/render/renderer.h"
+#include "strahl/scene/scene_document.h"
 
 namespace strahl::app {
 
-enum class Command { None, Render, Info, Bench, Assemble, Merge };
+enum class Command { None, Render, Info, Convert, Bench, Assemble, Merge };
 
 struct Options {
     Command command = Command::None;
@@ -32,6 +33,8 @@ struct Options {
     std::vector<std::string> aovs;  // overrides film.aovs when given
     bool exrFloat = false;
     std::vector<std::string> sets;  // --set POINTER=VALUE: scene patches, after the flags above
+    std::vector<std::string> defines;  // -D NAME=VALUE: a Mitsuba scene's <default> parameters
+    std::string convertOutput;         // convert: the strahl JSON scene to write
     bool quiet = false;
     PacketMode packets = PacketMode::Auto;
     int tileSize = 32;
@@ -61,6 +64,9 @@ struct Options {
     // merge
     MergeOptions merge;
 };
+
+// The -D arguments as a map (a later one for the same name wins).
+SceneDefines sceneDefines(const Options& options);
 
 // Parses argv. Returns an exit code to stop with (0 after --help/--version,
 // 2 after a usage error, with the message printed), or nullopt to go on.

@@ -22,6 +22,7 @@ namespace {
 RenderJob renderJob(const Options& o) {
     RenderJob job;
     job.scene = o.scene;
+    job.defines = sceneDefines(o);
     job.patches = scenePatches(o);
     // -o is not a patch: its names are relative to the current folder, and
     // where an image goes is not part of what it is.

@@ -46,7 +46,7 @@ std::vector<ScenePatch> scenePatches(const Options& o) {
 
 // The scene file as a document with the command line's patches applied.
 SceneDocument patchedScene(const Options& o) {
-    SceneDocument document = SceneDocument::read(o.scene);
+    SceneDocument document = SceneDocument::read(o.scene, sceneDefines(o));
     for (const ScenePatch& patch : scenePatches(o)) document.apply(patch);
     return document;
 }

@@ -279,7 +279,7 @@ void rasterize(const RenderJob& job, const SceneDesc& desc, const World& world,
 JobResult runRenderJob(const RenderJob& given, JobObserver& observer) {
     const auto started = Clock::now();
     const RenderJob job = withFrameNames(given);
-    SceneDocument document = SceneDocument::read(job.scene);
+    SceneDocument document = SceneDocument::read(job.scene, job.defines);
     for (const ScenePatch& patch : job.patches) document.apply(patch);
     const SceneDesc desc = document.parse();
     const std::vector<fs::path> outputs = outputFiles(job, desc);

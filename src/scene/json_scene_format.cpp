@@ -2,6 +2,7 @@
 // default for any extension no other format claims.
 
 #include "json_reader.h"
+#include "strahl/core/error.h"
 #include "scene_formats.h"
 
 namespace strahl::scene_detail {
@@ -11,7 +12,11 @@ namespace {
 constexpr std::string_view kExtensions[] = {".json"};
 
 nlohmann::json toDocument(const std::string& text, const std::filesystem::path&,
-                          const std::string& label) {
+                          const std::string& label,
+                          const std::map<std::string, std::string>& defines) {
+    if (!defines.empty())
+        fail(label, ": -D ", defines.begin()->first,
+             ": strahl JSON scenes have no parameters to define (use --set POINTER=VALUE)");
     return parseJsonText(text, label);
 }
 

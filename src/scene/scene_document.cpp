@@ -101,15 +101,16 @@ SceneDocument::SceneDocument(SceneDocument&&) noexcept = default;
 SceneDocument& SceneDocument::operator=(SceneDocument&&) noexcept = default;
 SceneDocument::~SceneDocument() = default;
 
-SceneDocument SceneDocument::fromText(const std::string& text, const fs::path& file) {
+SceneDocument SceneDocument::fromText(const std::string& text, const fs::path& file,
+                                      const SceneDefines& defines) {
     auto impl = std::make_unique<Impl>();
     impl->label = file.string();
-    impl->document = scene_detail::sceneFormatOf(file).toDocument(text, file, impl->label);
+    impl->document = scene_detail::sceneFormatOf(file).toDocument(text, file, impl->label, defines);
     impl->file = fs::absolute(file).lexically_normal();
     return SceneDocument(std::move(impl));
 }
 
-SceneDocument SceneDocument::read(const fs::path& file) {
+SceneDocument SceneDocument::read(const fs::path& file, const SceneDefines& defines) {
     const std::string label = file.string();
     const std::unique_ptr<std::FILE, int (*)(std::FILE*)> stream(std::fopen(file.c_str(), "rb"),
                                                                  &std::fclose);
@@ -120,7 +121,40 @@ SceneDocument SceneDocument::read(const fs::path& file) {
     while ((n = std::fread(buffer.data(), 1, buffer.size(), stream.get())) > 0)
         text.append(buffer.data(), n);
     if (std::ferror(stream.get())) fail(label, ": cannot read: ", std::strerror(errno));
-    return fromText(text, file);
+    return fromText(text, file, defines);
+}
+
+std::string SceneDocument::text(int indent) const { return impl_->document.dump(indent) + "\n"; }
+
+namespace {
+
+// The keys whose string values are file names (docs/scene-format.md).
+bool namesFiles(const std::string& key) {
+    return key == "file" || key == "texture" || key == "image" || key == "gltf" ||
+           key == "outputs";
+}
+
+void rebase(json& value, const fs::path& from, const fs::path& to, bool isFile) {
+    if (value.is_string() && isFile) {
+        const fs::path name = value.get<std::string>();
+        if (name.is_relative())
+            value = (from / name).lexically_normal().lexically_relative(to).string();
+    } else if (value.is_array()) {
+        for (json& element : value) rebase(element, from, to, isFile);
+    } else if (value.is_object()) {
+        for (auto& [key, member] : value.items()) rebase(member, from, to, namesFiles(key));
+    }
+}
+
+}  // namespace
+
+std::string SceneDocument::textFor(const fs::path& destination) const {
+    const fs::path from = impl_->file.parent_path();
+    const fs::path to = fs::absolute(destination).lexically_normal().parent_path();
+    if (from == to) return text();
+    json copy = impl_->document;
+    rebase(copy, from, to, false);
+    return copy.dump(2) + "\n";
 }
 
 void SceneDocument::apply(const ScenePatch& patch) {

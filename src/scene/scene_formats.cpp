@@ -7,12 +7,14 @@
 
 namespace strahl::scene_detail {
 
-extern const SceneFormat kJsonSceneFormat;  // json_scene_format.cpp: the default
+extern const SceneFormat kJsonSceneFormat;     // json_scene_format.cpp: the default
+extern const SceneFormat kMitsubaSceneFormat;  // mitsuba_scene_format.cpp
 
 namespace {
 
 const SceneFormat* const kFormats[] = {
     &kJsonSceneFormat,
+    &kMitsubaSceneFormat,
 };
 
 }  // namespace

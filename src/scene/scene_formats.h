@@ -8,6 +8,7 @@
 // docs/architecture.md, "How to add a scene file format".
 
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <span>
 #include <string>
@@ -19,9 +20,11 @@ struct SceneFormat {
     std::string_view name;                         // for messages: "strahl JSON"
     std::span<const std::string_view> extensions;  // lower case, with the dot
     // The document of `text`; `file` anchors relative paths, `label` names the
-    // file in errors ("<label>:LINE:COLUMN: ..." or "<label>: <place>: ...").
+    // file in errors ("<label>:LINE:COLUMN: ..." or "<label>: <place>: ..."),
+    // `defines` are -D name=value (values for the format's parameters).
     nlohmann::json (*toDocument)(const std::string& text, const std::filesystem::path& file,
-                                 const std::string& label);
+                                 const std::string& label,
+                                 const std::map<std::string, std::string>& defines);
 };
 
 // The format of `file` by its extension (case-insensitive); strahl's JSON for

@@ -293,7 +293,9 @@ TEST(BadInputCorpusTable, CoversEveryFolderWithSmallFiles) {
     for (const BadCase& c : cases) {
         EXPECT_TRUE(rows.insert(c.name).second) << "two rows for " << c.name;
         EXPECT_TRUE(c.status == 0 || c.status == 1 || c.status == 2) << c.name;
-        EXPECT_NE(c.command.find("scene.json"), std::string::npos) << c.name;
+        EXPECT_TRUE(c.command.find("scene.json") != std::string::npos ||
+                    c.command.find("scene.xml") != std::string::npos)
+            << c.name;
         const std::string prefix = c.status == 0 ? "strahl: warning: " : "strahl: error: ";
         EXPECT_EQ(c.stderrPattern.rfind(prefix, 0), 0u) << c.name << ": " << c.stderrPattern;
         // A gtest name: letters, digits and '_' only.
@@ -307,7 +309,8 @@ TEST(BadInputCorpusTable, CoversEveryFolderWithSmallFiles) {
         const std::string name = entry.path().filename().string();
         folders.insert(name);
         EXPECT_TRUE(rows.count(name)) << "folder " << name << " has no row in the README table";
-        EXPECT_TRUE(fs::exists(entry.path() / "scene.json")) << name;
+        EXPECT_TRUE(fs::exists(entry.path() / "scene.json") || fs::exists(entry.path() / "scene.xml"))
+            << name;
         for (const auto& file : fs::recursive_directory_iterator(entry.path())) {
             if (file.is_regular_file()) {
                 EXPECT_LT(file.file_size(), 10u * 1024u) << file.path();

@@ -32,6 +32,7 @@ struct FuzzTarget {
 
 const FuzzTarget kTargets[] = {
     {"fuzz_scene_json", &fuzz::runSceneJson},
+    {"fuzz_mitsuba_xml", &fuzz::runMitsubaXml},
     {"fuzz_ply", &fuzz::runPly},
     {"fuzz_obj", &fuzz::runObj},
     {"fuzz_gltf", &fuzz::runGltf},

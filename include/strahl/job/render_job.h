@@ -32,7 +32,8 @@ enum class RenderAlgorithm { RayTrace, Raster };
 const char* algorithmName(RenderAlgorithm algorithm);  // "raytrace" | "raster"
 
 struct RenderJob {
-    std::filesystem::path scene;
+    std::filesystem::path scene;  // strahl JSON, or another format's (scene_document.h)
+    SceneDefines defines;         // -D: a Mitsuba scene's <default> parameters
     // Applied in order to the scene document before it is parsed: every
     // scene setting a command line changes (docs/cli.md#scene-patches).
     std::vector<ScenePatch> patches;

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <initializer_list>
+#include <map>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -35,13 +36,20 @@ struct ScenePatch {
 // is not an RFC 6901 JSON pointer ("/key/key/index").
 ScenePatch parseSetArgument(std::string_view argument);
 
+// -D name=value: values for the parameters of scene formats that have them
+// (a Mitsuba scene's <default>s); strahl JSON has none and refuses them.
+using SceneDefines = std::map<std::string, std::string>;
+
 class SceneDocument {
 public:
     // Throws strahl::Error "<file>: cannot open: ..." or
-    // "<file>:LINE:COLUMN: syntax error: ...".
-    static SceneDocument read(const std::filesystem::path& file);
-    // The same from text; `file` names it in errors and anchors relative paths.
-    static SceneDocument fromText(const std::string& text, const std::filesystem::path& file);
+    // "<file>:LINE:COLUMN: syntax error: ..." (or the importer's error for
+    // another format: "<file>:LINE: ...").
+    static SceneDocument read(const std::filesystem::path& file, const SceneDefines& defines = {});
+    // The same from text; `file` names it in errors, anchors relative paths
+    // and, by its extension, picks the format.
+    static SceneDocument fromText(const std::string& text, const std::filesystem::path& file,
+                                  const SceneDefines& defines = {});
 
     SceneDocument(SceneDocument&&) noexcept;
     SceneDocument& operator=(SceneDocument&&) noexcept;
@@ -65,6 +73,13 @@ public:
     uint64_t hash(std::initializer_list<std::string_view> without = {}) const;
 
     const std::filesystem::path& file() const;
+    // The document as strahl JSON text, indented by `indent` spaces (what
+    // `strahl convert` writes).
+    std::string text(int indent = 2) const;
+    // text() for a file written at `destination`: relative file names (of
+    // meshes, images, textures, patch files, outputs) rewritten relative to
+    // the destination's folder instead of the scene file's.
+    std::string textFor(const std::filesystem::path& destination) const;
 
 private:
     struct Impl;

@@ -1,0 +1,546 @@
+#include "mitsuba_plugins.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "strahl/core/error.h"
+
+namespace strahl::scene_detail::mitsuba {
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+[[noreturn]] void unsupported(const Object& o, const std::string& what) {
+    fail(o.place.text(), ": ", o.element(), ": ", what);
+}
+
+// The parameters a plugin reads; any other is an error rather than a setting
+// silently ignored. `ignored` are parameters that do not change the expected
+// image (output formats, far clip planes).
+void allowOnly(const Object& o, std::initializer_list<const char*> read,
+               std::initializer_list<const char*> ignored = {}) {
+    for (const Property& p : o.properties) {
+        const auto is = [&](const char* name) { return p.name == name; };
+        if (std::none_of(read.begin(), read.end(), is) &&
+            std::none_of(ignored.begin(), ignored.end(), is))
+            fail(p.place.text(), ": ", o.element(), ": the parameter '", p.name,
+                 "' is not supported (docs/mitsuba.md lists what is)");
+    }
+}
+
+double number(const Object& o, const std::string& name, double fallback) {
+    const Property* p = o.property(name);
+    if (!p) return fallback;
+    if (p->tag != "float" && p->tag != "integer")
+        fail(p->place.text(), ": '", name, "' must be a float, got <", p->tag, ">");
+    const std::vector<double> v = numbers(p->value, p->place, name);
+    if (v.size() != 1) fail(p->place.text(), ": '", name, "': expected one number");
+    return v[0];
+}
+
+int integer(const Object& o, const std::string& name, int fallback) {
+    const double v = number(o, name, fallback);
+    if (v != std::floor(v) || std::abs(v) > 1e9)
+        fail(o.property(name)->place.text(), ": '", name, "' must be an integer");
+    return int(v);
+}
+
+bool boolean(const Object& o, const std::string& name, bool fallback) {
+    const Property* p = o.property(name);
+    if (!p) return fallback;
+    if (p->tag != "boolean" || (p->value != "true" && p->value != "false"))
+        fail(p->place.text(), ": '", name, "' must be <boolean> true or false");
+    return p->value == "true";
+}
+
+std::string text(const Object& o, const std::string& name, const std::string& fallback) {
+    const Property* p = o.property(name);
+    if (!p) return fallback;
+    if (p->tag != "string") fail(p->place.text(), ": '", name, "' must be a <string>");
+    return p->value;
+}
+
+glm::dvec3 vec(const Object& o, const std::string& name, glm::dvec3 fallback) {
+    const Property* p = o.property(name);
+    if (!p) return fallback;
+    if (p->tag != "point" && p->tag != "vector")
+        fail(p->place.text(), ": '", name, "' must be a <point> or <vector>");
+    return p->xyz;
+}
+
+glm::dmat4 transform(const Object& o, const std::string& name) {
+    const Property* p = o.property(name);
+    if (!p) return glm::dmat4(1.0);
+    if (p->tag != "transform") fail(p->place.text(), ": '", name, "' must be a <transform>");
+    return p->matrix;
+}
+
+json vec3(glm::dvec3 v) { return json::array({v.x, v.y, v.z}); }
+
+// "scene.xml:12": names made for objects without an id.
+std::string where(const Object& o) {
+    return fs::path(o.place.file).filename().string() + ":" + std::to_string(o.place.line);
+}
+
+// strahl's {"matrix": [...]} transform operation, row-major.
+json matrixOp(const glm::dmat4& m) {
+    json rows = json::array();
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) rows.push_back(r == 3 ? (c == 3 ? 1.0 : 0.0) : m[c][r]);
+    return json::array({json{{"matrix", rows}}});
+}
+
+const Child* child(const Object& o, const std::string& tag, const std::string& name = "") {
+    for (const Child& c : o.children)
+        if (c.object->tag == tag && (name.empty() || c.name == name || c.name.empty())) return &c;
+    return nullptr;
+}
+
+class Converter {
+public:
+    Converter(const Scene& scene, const fs::path& folder) : scene_(scene), folder_(folder) {}
+
+    json convert() {
+        const Object& root = *scene_.root;
+        refuseMedia(root);
+        doc_["shapes"] = json::array();
+        bool sensor = false, integrator = false;
+        for (const Child& c : root.children) {
+            const Object& o = *c.object;
+            if (o.tag == "shape") {
+                shape(o, doc_["shapes"]);
+            } else if (o.tag == "emitter") {
+                emitter(o);
+            } else if (o.tag == "sensor") {
+                if (sensor) unsupported(o, "a second sensor: strahl renders one camera");
+                sensor = true;
+                this->sensor(o);
+            } else if (o.tag == "integrator") {
+                if (integrator) unsupported(o, "a second integrator");
+                integrator = true;
+                this->integrator(o);
+            } else if (o.tag == "medium" || o.tag == "volume" || o.tag == "phase") {
+                unsupported(o, "participating media are not supported");
+            } else if (o.tag == "bsdf" || o.tag == "texture") {
+                // Declared for <ref>s; built where a shape uses it.
+            } else {
+                unsupported(o, "not supported at the top level of a scene");
+            }
+        }
+        if (!sensor) fail(root.place.text(), ": <scene>: no <sensor> (strahl needs a camera)");
+        if (!integrator) render_["integrator"] = "path", render_["max_depth"] = 1024;
+        if (!materials_.empty()) doc_["materials"] = materials_;
+        if (!groups_.empty()) doc_["groups"] = groups_;
+        if (!lights_.empty()) doc_["lights"] = lights_;
+        doc_["render"] = render_;
+        if (doc_["shapes"].empty())
+            fail(root.place.text(), ": <scene>: no <shape> (strahl needs at least one)");
+        return doc_;
+    }
+
+private:
+    // Participating media anywhere (a medium, a volume or phase function, a
+    // shape's interior or exterior) are refused first: what a scene with them
+    // needs most is said before any detail.
+    static void refuseMedia(const Object& o) {
+        for (const Child& c : o.children) {
+            const std::string& tag = c.object->tag;
+            if (tag == "medium" || tag == "volume" || tag == "phase")
+                unsupported(*c.object, "participating media are not supported");
+            refuseMedia(*c.object);
+        }
+    }
+
+    // --- files -------------------------------------------------------------
+    // A file name as Mitsuba finds it: relative to the <path> folders, then
+    // the scene's; in the document relative to the scene's folder.
+    std::string file(const Object& o, const std::string& name) {
+        const std::string given = text(o, "filename", "");
+        if (given.empty()) unsupported(o, "needs a <string name=\"filename\">");
+        fs::path found = fs::path(given);
+        if (found.is_relative()) {
+            found = o.folder / given;
+            for (const fs::path& folder : scene_.searchPath)
+                if (fs::exists(folder / given)) {
+                    found = folder / given;
+                    break;
+                }
+        }
+        found = fs::absolute(found);
+        if (!fs::exists(found))
+            fail(o.property("filename")->place.text(), ": ", o.element(), ": no ", name, " '",
+                 given, "' (looked in the <path> folders and the scene's)");
+        const fs::path relative = found.lexically_normal().lexically_relative(folder_);
+        return relative.empty() ? found.lexically_normal().string() : relative.string();
+    }
+
+    // --- colours and textures ----------------------------------------------
+    // A reflectance or radiance: <rgb>, a uniform <spectrum> or <float>, or
+    // a bitmap texture.
+    json color(const Object& o, const std::string& name, double fallback) {
+        for (const Child& c : o.children)
+            if (c.object->tag == "texture" && c.name == name) return texture(*c.object);
+        const Property* p = o.property(name);
+        if (!p) return fallback;
+        if (p->tag == "rgb" || p->tag == "float") {
+            const std::vector<double> v = numbers(p->value, p->place, name);
+            if (v.size() == 1) return v[0];
+            if (v.size() == 3) return json::array({v[0], v[1], v[2]});
+            fail(p->place.text(), ": '", name, "': expected 1 or 3 numbers");
+        }
+        if (p->tag == "spectrum") {
+            if (p->value.find(':') != std::string::npos)
+                fail(p->place.text(), ": <spectrum name=\"", name,
+                     "\">: spectra given per wavelength are not supported yet (give <rgb>)");
+            const std::vector<double> v = numbers(p->value, p->place, name);
+            if (v.size() != 1) fail(p->place.text(), ": '", name, "': expected one number");
+            return v[0];
+        }
+        fail(p->place.text(), ": '", name, "' must be <rgb>, <spectrum>, <float> or a texture");
+    }
+
+    json texture(const Object& t) {
+        if (t.type != "bitmap")
+            unsupported(t, "only bitmap textures are supported (not '" + t.type + "')");
+        allowOnly(t, {"filename", "raw"}, {"filter_type", "wrap_mode", "format"});
+        if (t.property("to_uv")) unsupported(t, "to_uv is not supported yet");
+        if (boolean(t, "raw", false))
+            unsupported(t, "raw (no sRGB decoding of 8-bit images) is not supported yet");
+        const std::string wrap = text(t, "wrap_mode", "repeat");
+        if (wrap != "repeat") unsupported(t, "wrap_mode '" + wrap + "': only repeat is supported");
+        return json{{"texture", file(t, "texture image")}};
+    }
+
+    // --- materials ---------------------------------------------------------
+    // The strahl material of a BSDF (with an area emitter's radiance), made
+    // once per (BSDF, emitter) pair.
+    std::string material(const Object* bsdf, const Object* emitter) {
+        const auto key = std::make_pair(bsdf, emitter);
+        if (const auto found = madeMaterials_.find(key); found != madeMaterials_.end())
+            return found->second;
+        json m;
+        std::string name = bsdf ? (bsdf->id.empty() ? "bsdf@" + where(*bsdf) : bsdf->id)
+                                : "mitsuba-default";
+        if (bsdf) {
+            m = bsdfMaterial(*bsdf);
+        } else {
+            m = {{"type", "diffuse"}, {"color", 0.5}};  // Mitsuba's default BSDF
+        }
+        if (emitter) {
+            allowOnly(*emitter, {"radiance"});
+            m["emission"] = color(*emitter, "radiance", 1.0);
+            name += "+emitter@" + where(*emitter);
+        }
+        m["name"] = name;
+        materials_.push_back(m);
+        madeMaterials_[key] = name;
+        return name;
+    }
+
+    json bsdfMaterial(const Object& b) {
+        if (b.type == "twosided") {
+            // strahl's opaque materials reflect on both sides already.
+            const Child* inner = child(b, "bsdf");
+            if (!inner) unsupported(b, "needs a nested <bsdf>");
+            allowOnly(b, {});
+            return bsdfMaterial(*inner->object);
+        }
+        if (b.type == "diffuse") {
+            allowOnly(b, {"reflectance"});
+            return {{"type", "diffuse"}, {"color", color(b, "reflectance", 0.5)}};
+        }
+        unsupported(b, "this BSDF is not supported yet (docs/mitsuba.md lists those that are)");
+    }
+
+    // --- shapes ------------------------------------------------------------
+    void shape(const Object& s, json& into) {
+        const Child* bsdf = child(s, "bsdf");
+        const Child* emitter = child(s, "emitter");
+        if (emitter && emitter->object->type != "area")
+            unsupported(*emitter->object, "only area emitters can be attached to shapes");
+        for (const Child& c : s.children)
+            if (c.object->tag != "bsdf" && c.object->tag != "emitter" && c.object->tag != "shape")
+                unsupported(*c.object, "not supported inside a <shape>");
+        if (boolean(s, "flip_normals", false)) unsupported(s, "flip_normals is not supported yet");
+        const glm::dmat4 toWorld = transform(s, "to_world");
+        json shape;
+        if (s.type == "obj" || s.type == "ply") {
+            allowOnly(s, {"filename", "to_world", "face_normals", "flip_normals"});
+            if (boolean(s, "face_normals", false)) unsupported(s, "face_normals is not supported yet");
+            shape = {{"type", "mesh"}, {"file", file(s, "mesh file")}};
+        } else if (s.type == "rectangle") {
+            allowOnly(s, {"to_world", "flip_normals"});
+            // [-1, 1]² in the xy plane, facing +z.
+            shape = {{"type", "mesh"},
+                     {"positions", {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}}},
+                     {"normals", {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}}},
+                     {"uvs", {{0, 0}, {1, 0}, {1, 1}, {0, 1}}},
+                     {"indices", {0u, 1u, 2u, 0u, 2u, 3u}}};
+        } else if (s.type == "cube") {
+            allowOnly(s, {"to_world", "flip_normals"});
+            shape = cube();
+        } else if (s.type == "sphere") {
+            allowOnly(s, {"to_world", "center", "radius", "flip_normals"});
+            if (emitter) unsupported(s, "an emitting sphere is not supported yet (use a mesh)");
+            const glm::dvec3 center = vec(s, "center", glm::dvec3(0.0));
+            const double radius = number(s, "radius", 1.0);
+            const glm::dmat4 m = toWorld * glm::dmat4(glm::dvec4(radius, 0, 0, 0),
+                                                      glm::dvec4(0, radius, 0, 0),
+                                                      glm::dvec4(0, 0, radius, 0),
+                                                      glm::dvec4(center, 1.0));
+            shape = {{"type", "implicit"}, {"surface", {{"type", "sphere"}, {"radius", 1}}}};
+            shape["transform"] = matrixOp(m);
+        } else if (s.type == "instance") {
+            allowOnly(s, {"to_world"});
+            const Child* group = child(s, "shape");
+            if (!group || group->object->type != "shapegroup")
+                unsupported(s, "needs a <ref> to a <shape type=\"shapegroup\">");
+            shape = {{"type", "instance"}, {"group", shapegroup(*group->object)}};
+        } else if (s.type == "shapegroup") {
+            shapegroup(s);  // placed by instances
+            return;
+        } else {
+            unsupported(s, "this shape is not supported yet (docs/mitsuba.md lists those that are)");
+        }
+        if (s.type != "sphere") shape["transform"] = matrixOp(toWorld);
+        if (s.type != "instance")
+            shape["material"] = material(bsdf ? bsdf->object.get() : nullptr,
+                                         emitter ? emitter->object.get() : nullptr);
+        shape["name"] = s.id.empty() ? s.type + "@" + where(s) : s.id;
+        into.push_back(shape);
+    }
+
+    std::string shapegroup(const Object& g) {
+        if (const auto found = groupNames_.find(&g); found != groupNames_.end()) return found->second;
+        const std::string name = g.id.empty() ? "shapegroup@" + where(g) : g.id;
+        json shapes = json::array();
+        for (const Child& c : g.children) {
+            if (c.object->tag != "shape") unsupported(*c.object, "a shapegroup holds shapes only");
+            shape(*c.object, shapes);
+        }
+        groups_.push_back({{"name", name}, {"shapes", shapes}});
+        groupNames_[&g] = name;
+        return name;
+    }
+
+    static json cube() {
+        json positions = json::array(), normals = json::array(), uvs = json::array(),
+             indices = json::array();
+        // Each face of [-1, 1]³: its normal n and two axes a, b with a × b = n.
+        const int faces[6][3][3] = {{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}},   {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}},
+                                    {{0, 1, 0}, {0, 0, 1}, {1, 0, 0}},   {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}},
+                                    {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}},   {{0, 0, -1}, {0, 1, 0}, {1, 0, 0}}};
+        for (int f = 0; f < 6; ++f) {
+            const glm::dvec3 n(faces[f][0][0], faces[f][0][1], faces[f][0][2]);
+            const glm::dvec3 a(faces[f][1][0], faces[f][1][1], faces[f][1][2]);
+            const glm::dvec3 b(faces[f][2][0], faces[f][2][1], faces[f][2][2]);
+            const int base = 4 * f;
+            const double corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+            for (const auto& c : corners) {
+                positions.push_back(vec3(n + c[0] * a + c[1] * b));
+                normals.push_back(vec3(n));
+                uvs.push_back({(c[0] + 1) / 2, (c[1] + 1) / 2});
+            }
+            for (int i : {0, 1, 2, 0, 2, 3}) indices.push_back(static_cast<unsigned>(base + i));
+        }
+        return {{"type", "mesh"}, {"positions", positions}, {"normals", normals}, {"uvs", uvs},
+                {"indices", indices}};
+    }
+
+    // --- emitters ----------------------------------------------------------
+    void emitter(const Object& e) {
+        const glm::dmat4 toWorld = transform(e, "to_world");
+        if (e.type == "point") {
+            allowOnly(e, {"position", "intensity", "to_world"});
+            const glm::dvec3 position =
+                e.property("position") ? vec(e, "position", glm::dvec3(0.0)) : glm::dvec3(toWorld[3]);
+            lights_.push_back({{"type", "point"}, {"position", vec3(position)},
+                               {"intensity", color(e, "intensity", 1.0)}});
+        } else if (e.type == "directional") {
+            allowOnly(e, {"direction", "irradiance", "to_world"});
+            const glm::dvec3 direction = e.property("direction")
+                                             ? vec(e, "direction", glm::dvec3(0, 0, 1))
+                                             : glm::dvec3(toWorld * glm::dvec4(0, 0, 1, 0));
+            lights_.push_back({{"type", "directional"}, {"direction", vec3(direction)},
+                               {"irradiance", color(e, "irradiance", 1.0)}});
+        } else if (e.type == "constant") {
+            allowOnly(e, {"radiance"});
+            if (doc_.contains("background")) unsupported(e, "a second constant emitter");
+            doc_["background"] = color(e, "radiance", 1.0);
+        } else if (e.type == "area") {
+            unsupported(e, "an area emitter belongs inside a <shape>");
+        } else {
+            unsupported(e, "this emitter is not supported yet (docs/mitsuba.md lists those that are)");
+        }
+    }
+
+    // --- sensor, film, sampler ---------------------------------------------
+    void sensor(const Object& s) {
+        const Child* filmChild = child(s, "film");
+        const Object* film = filmChild ? filmChild->object.get() : nullptr;
+        const int width = film ? integer(*film, "width", 768) : 768;
+        const int height = film ? integer(*film, "height", 576) : 576;
+        if (film) this->film(*film, width, height);
+        else doc_["film"] = {{"width", width}, {"height", height}, {"filter", {{"type", "gaussian"}, {"radius", 2.0}}}};
+        if (const Child* sampler = child(s, "sampler")) this->sampler(*sampler->object);
+        for (const Child& c : s.children)
+            if (c.object->tag != "film" && c.object->tag != "sampler")
+                unsupported(*c.object, "not supported inside a <sensor>");
+
+        const glm::dmat4 m = transform(s, "to_world");
+        const glm::dvec3 eye(m[3]);
+        const glm::dvec3 forward(m[2]), up(m[1]), left(m[0]);
+        json camera = {{"eye", vec3(eye)}, {"back", vec3(-glm::normalize(forward))},
+                       {"up", vec3(glm::normalize(up))}};
+        const double aspect = double(width) / double(height);
+        if (s.type == "perspective" || s.type == "thinlens") {
+            allowOnly(s, {"to_world", "fov", "fov_axis", "near_clip", "focal_length",
+                          "aperture_radius", "focus_distance"},
+                      {"far_clip"});
+            if (s.type == "perspective" &&
+                (s.property("aperture_radius") || s.property("focus_distance")))
+                unsupported(s, "aperture_radius and focus_distance belong to a thinlens sensor");
+            camera["fov"] = verticalFov(s, aspect);
+            camera["focal_distance"] = number(s, "near_clip", 1e-2);
+            if (s.type == "thinlens") {
+                camera["aperture_radius"] = number(s, "aperture_radius", 0.0);
+                camera["focus_distance"] = number(s, "focus_distance", 0.0);
+            }
+        } else if (s.type == "orthographic") {
+            allowOnly(s, {"to_world", "near_clip"}, {"far_clip"});
+            // Mitsuba's view is [-1, 1] wide and [-1/aspect, 1/aspect] high in
+            // the sensor's space, scaled by to_world.
+            const double sx = glm::length(left), sy = glm::length(up);
+            camera["type"] = "orthographic";
+            camera["window"] = {-sx, sx, -sy / aspect, sy / aspect};
+            // Mitsuba's rays start on the plane at near_clip; strahl's on the
+            // plane through the eye: move the eye there.
+            const glm::dvec3 view = glm::normalize(forward);
+            camera["eye"] = vec3(eye + number(s, "near_clip", 1e-2) * view);
+        } else {
+            unsupported(s, "this sensor is not supported (perspective, thinlens, orthographic are)");
+        }
+        doc_["camera"] = camera;
+    }
+
+    // Mitsuba's fov is along fov_axis (default x); strahl's is vertical.
+    static double verticalFov(const Object& s, double aspect) {
+        double fov = 0.0;
+        std::string axis = text(s, "fov_axis", "x");
+        if (s.property("fov")) {
+            fov = number(s, "fov", 0.0);
+        } else {
+            // A focal length in mm on 35 mm film (36 x 24 mm): along the
+            // film's diagonal.
+            const std::string given = text(s, "focal_length", "50mm");
+            const std::string digits = given.substr(0, given.find("mm"));
+            const double f = numbers(digits, s.place, "focal_length").at(0);
+            fov = glm::degrees(2.0 * std::atan(std::sqrt(36.0 * 36.0 + 24.0 * 24.0) / (2.0 * f)));
+            axis = "diagonal";
+        }
+        if (!(fov > 0.0 && fov < 180.0)) unsupported(s, "fov must be between 0 and 180 degrees");
+        const double t = std::tan(glm::radians(fov) / 2.0);
+        double ty = 0.0;  // tan of half the vertical fov
+        if (axis == "x") ty = t / aspect;
+        else if (axis == "y") ty = t;
+        else if (axis == "diagonal") ty = t / std::sqrt(aspect * aspect + 1.0);
+        else if (axis == "smaller") ty = aspect >= 1.0 ? t : t / aspect;
+        else if (axis == "larger") ty = aspect >= 1.0 ? t / aspect : t;
+        else fail(s.property("fov_axis")->place.text(), ": fov_axis must be x, y, diagonal, smaller or larger");
+        return glm::degrees(2.0 * std::atan(ty));
+    }
+
+    void film(const Object& f, int width, int height) {
+        if (f.type != "hdrfilm") unsupported(f, "only hdrfilm is supported");
+        allowOnly(f, {"width", "height", "component_format"},
+                  {"pixel_format", "file_format", "banner", "sample_border"});
+        for (const char* crop : {"crop_offset_x", "crop_offset_y", "crop_width", "crop_height"})
+            if (f.property(crop)) unsupported(f, "a film crop is not supported in the scene: use --crop");
+        json filter = {{"type", "gaussian"}, {"radius", 2.0}};  // Mitsuba's default: σ 0.5, 4σ
+        if (const Child* rfilter = child(f, "rfilter")) {
+            const Object& r = *rfilter->object;
+            if (r.type == "box") {
+                allowOnly(r, {});
+                filter = "box";
+            } else if (r.type == "gaussian") {
+                allowOnly(r, {"stddev"});
+                if (number(r, "stddev", 0.5) != 0.5)
+                    unsupported(r, "only the default stddev 0.5 is supported");
+            } else {
+                unsupported(r, "this reconstruction filter is not supported (box and gaussian are)");
+            }
+        }
+        doc_["film"] = {{"width", width},
+                        {"height", height},
+                        {"filter", filter},
+                        {"exr_float", text(f, "component_format", "float16") == "float32"}};
+    }
+
+    void sampler(const Object& s) {
+        static const std::set<std::string> kinds = {"independent", "stratified", "multijitter",
+                                                    "orthogonal", "ldsampler"};
+        if (!kinds.count(s.type)) unsupported(s, "unknown sampler");
+        // Every kind becomes strahl's own sampler: the same expected image.
+        allowOnly(s, {"sample_count", "seed"}, {"jitter"});
+        render_["spp"] = integer(s, "sample_count", 4);
+        const int seed = integer(s, "seed", 0);
+        if (seed < 0) unsupported(s, "seed must not be negative");
+        render_["seed"] = static_cast<uint64_t>(seed);
+    }
+
+    // --- integrator --------------------------------------------------------
+    void integrator(const Object& i) {
+        if (i.type == "moment" || i.type == "aov") {
+            // The wrapped integrator's image is the beauty; the moments and
+            // AOV channels are not written.
+            allowOnly(i, {}, {"aovs"});
+            const Child* inner = child(i, "integrator");
+            if (!inner) unsupported(i, "needs a nested <integrator>");
+            integrator(*inner->object);
+            return;
+        }
+        if (i.type == "path" || i.type == "ptracer") {
+            // ptracer traces from the lights; its expected image is the path
+            // tracer's.
+            allowOnly(i, {"max_depth", "rr_depth"}, {"hide_emitters", "samples_per_pass"});
+            if (boolean(i, "hide_emitters", false)) unsupported(i, "hide_emitters is not supported");
+            const int maxDepth = integer(i, "max_depth", -1);
+            if (maxDepth == 0 || maxDepth < -1) unsupported(i, "max_depth must be -1 or at least 1");
+            // Mitsuba counts path vertices: 1 sees emitters only, 2 adds direct
+            // light. strahl counts bounces: 0 sees emitters only.
+            render_["integrator"] = "path";
+            render_["max_depth"] = maxDepth == -1 ? 1024 : maxDepth - 1;
+            const int rr = integer(i, "rr_depth", 5);
+            render_["russian_roulette"] = maxDepth == -1 || rr < maxDepth;
+            return;
+        }
+        if (i.type == "direct") {
+            allowOnly(i, {}, {"emitter_samples", "bsdf_samples", "shading_samples", "hide_emitters"});
+            if (boolean(i, "hide_emitters", false)) unsupported(i, "hide_emitters is not supported");
+            render_["integrator"] = "direct";
+            render_.erase("max_depth");
+            return;
+        }
+        unsupported(i, "this integrator is not supported (path, direct, ptracer, moment, aov are)");
+    }
+
+    const Scene& scene_;
+    fs::path folder_;
+    json doc_ = json::object();
+    json render_ = {{"integrator", "path"}, {"max_depth", 1024}, {"spp", 4}};
+    json materials_ = json::array(), groups_ = json::array(), lights_ = json::array();
+    std::map<std::pair<const Object*, const Object*>, std::string> madeMaterials_;
+    std::map<const Object*, std::string> groupNames_;
+};
+
+}  // namespace
+
+json toStrahlDocument(const Scene& scene, const fs::path& sceneFolder) {
+    return Converter(scene, sceneFolder).convert();
+}
+
+}  // namespace strahl::scene_detail::mitsuba

@@ -1,0 +1,171 @@
+// The Mitsuba 3 importer (src/scene/mitsuba_*.cpp, docs/mitsuba.md): the XML
+// language (defaults and -D, $ substitution, includes, ids and refs,
+// transforms in order), the plugin mappings whose numbers are easy to get
+// wrong (max_depth, fov_axis, Mitsuba's default lens), and one clear error,
+// with file and line, for what is malformed or not supported.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "strahl/scene/scene_desc.h"
+#include "strahl/scene/scene_document.h"
+#include "test_support.h"
+
+namespace strahl {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::HasSubstr;
+
+// A scene around `body`: a perspective sensor (fov 90 along x, 64 x 32
+// pixels, 16 spp by default), a path integrator and a rectangle.
+std::string scene(const std::string& body, const std::string& integrator =
+                                               R"(<integrator type="path"/>)") {
+    return R"(<scene version="3.0.0">
+  <default name="spp" value="16"/>
+  )" + integrator + R"(
+  <sensor type="perspective">
+    <float name="fov" value="90"/>
+    <transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="64"/><integer name="height" value="32"/></film>
+    <sampler type="independent"><integer name="sample_count" value="$spp"/></sampler>
+  </sensor>
+  <shape type="rectangle"/>
+  )" + body + "\n</scene>\n";
+}
+
+SceneDesc parse(const std::string& text, const SceneDefines& defines = {},
+                const fs::path& file = "scene.xml") {
+    return SceneDocument::fromText(text, file, defines).parse();
+}
+
+std::string errorOf(const std::string& text, const SceneDefines& defines = {}) {
+    return test::errorMessage([&] { parse(text, defines); });
+}
+
+TEST(MitsubaImport, DefaultsAreSubstitutedAndMinusDOverridesThem) {
+    EXPECT_EQ(parse(scene("")).render.spp, 16);
+    EXPECT_EQ(parse(scene(""), {{"spp", "4"}}).render.spp, 4);
+    EXPECT_THAT(errorOf(scene(""), {{"sp", "4"}}),
+                HasSubstr("scene.xml: -D sp: the scene has no <default name=\"sp\"> and no $sp"));
+    EXPECT_THAT(errorOf(scene(R"(<emitter type="point"><rgb name="intensity" value="$power"/></emitter>)")),
+                HasSubstr("scene.xml:11: $power: no <default> or -D gives it a value"));
+}
+
+TEST(MitsubaImport, TheSensorBecomesTheCameraWithAVerticalFov) {
+    const SceneDesc d = parse(scene(""));
+    EXPECT_EQ(d.film.width, 64);
+    EXPECT_EQ(d.film.height, 32);
+    EXPECT_EQ(d.camera.eye, Vec3(0, 0, 5));
+    ASSERT_TRUE(d.camera.back.has_value());
+    EXPECT_NEAR(d.camera.back->z, 1.0f, 1e-6f);  // looking down -z
+    // 90 degrees along x on a 2:1 film: tan(fov_y / 2) = tan(45°) / 2.
+    EXPECT_NEAR(*d.camera.fovYDegrees, 2.0 * std::atan(0.5) * 180.0 / M_PI, 1e-4);
+    EXPECT_EQ(d.film.filter, "gaussian");  // hdrfilm's default filter
+    EXPECT_FLOAT_EQ(*d.film.filterRadius, 2.0f);
+}
+
+TEST(MitsubaImport, WithoutAFovTheSensorHasMitsubasFiftyMillimetreLens) {
+    std::string text = scene("");
+    text.replace(text.find(R"(<float name="fov" value="90"/>)"), 30, "");
+    // 50 mm on 36 x 24 mm film along the diagonal: 46.793°; on a 2:1 film
+    // the vertical half-angle's tangent is tan(23.40°) / sqrt(5).
+    const double ty = std::tan(46.7930 / 2 * M_PI / 180) / std::sqrt(5.0);
+    EXPECT_NEAR(*parse(text).camera.fovYDegrees, 2 * std::atan(ty) * 180 / M_PI, 1e-3);
+}
+
+TEST(MitsubaImport, MaxDepthCountsVerticesInMitsubaAndBouncesInStrahl) {
+    const auto depth = [](const std::string& value) {
+        return parse(scene("", R"(<integrator type="path"><integer name="max_depth" value=")" +
+                                    value + R"("/></integrator>)"))
+            .render.maxDepth;
+    };
+    EXPECT_EQ(depth("1"), 0);   // emitters seen directly
+    EXPECT_EQ(depth("2"), 1);   // and direct light
+    EXPECT_EQ(depth("-1"), 1024);  // unlimited: strahl's most
+    EXPECT_THAT(errorOf(scene("", R"(<integrator type="path"><integer name="max_depth" value="0"/></integrator>)")),
+                HasSubstr("max_depth must be -1 or at least 1"));
+    const SceneDesc wrapped = parse(scene("", R"(<integrator type="moment"><integrator type="direct"/></integrator>)"));
+    EXPECT_EQ(wrapped.render.integrator, "direct");
+}
+
+TEST(MitsubaImport, TransformsApplyInTheOrderWritten) {
+    const fs::path dir = test::scratchDir("mitsuba-transform");
+    test::writeFile(dir / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const SceneDesc d = parse(scene(R"(<shape type="obj" id="moved">
+    <string name="filename" value="tri.obj"/>
+    <transform name="to_world"><translate x="1"/><scale value="2"/></transform>
+  </shape>)"), {}, dir / "scene.xml");
+    ASSERT_EQ(d.shapes.size(), 2u);
+    // Translated first, then scaled: the origin lands at (2, 0, 0).
+    const Vec4 origin = d.shapes[1].transform * Vec4(0, 0, 0, 1);
+    EXPECT_FLOAT_EQ(origin.x, 2.0f);
+    EXPECT_FLOAT_EQ(d.shapes[1].transform[0][0], 2.0f);
+}
+
+TEST(MitsubaImport, IdsAndRefsShareOneMaterialAndLightsMap) {
+    const SceneDesc d = parse(scene(R"(
+  <bsdf type="diffuse" id="red"><rgb name="reflectance" value="0.8, 0.1, 0.1"/></bsdf>
+  <shape type="sphere"><float name="radius" value="0.5"/><ref id="red"/></shape>
+  <shape type="cube"><ref id="red"/></shape>
+  <emitter type="point"><point name="position" x="0" y="2" z="0"/><rgb name="intensity" value="10"/></emitter>
+  <emitter type="constant"><rgb name="radiance" value="0.25"/></emitter>)"));
+    ASSERT_EQ(d.shapes.size(), 3u);
+    EXPECT_EQ(d.shapes[1].kind, ShapeKind::Implicit);
+    EXPECT_EQ(d.shapes[1].material, "red");
+    EXPECT_EQ(d.shapes[2].material, "red");
+    EXPECT_EQ(d.shapes[0].material, "mitsuba-default");  // Mitsuba's grey 0.5
+    ASSERT_EQ(d.lights.size(), 1u);
+    EXPECT_EQ(d.background, Color(0.25f));
+}
+
+TEST(MitsubaImport, IncludesAreSplicedInAndCyclesRefused) {
+    const fs::path dir = test::scratchDir("mitsuba-include");
+    test::writeFile(dir / "parts/light.xml", R"(<scene version="3.0.0">
+  <emitter type="point"><point name="position" x="0" y="2" z="0"/></emitter>
+</scene>)");
+    test::writeFile(dir / "main.xml", scene(R"(<include filename="parts/light.xml"/>)"));
+    EXPECT_EQ(SceneDocument::read(dir / "main.xml").parse().lights.size(), 1u);
+
+    test::writeFile(dir / "loop.xml", scene(R"(<include filename="loop.xml"/>)"));
+    EXPECT_THAT(test::errorMessage([&] { SceneDocument::read(dir / "loop.xml"); }),
+                HasSubstr(":11: <include filename=\"loop.xml\">: includes itself (a cycle)"));
+    test::writeFile(dir / "gone.xml", scene(R"(<include filename="nowhere.xml"/>)"));
+    EXPECT_THAT(test::errorMessage([&] { SceneDocument::read(dir / "gone.xml"); }),
+                HasSubstr("gone.xml:11: cannot open"));
+}
+
+TEST(MitsubaImport, MalformedOrUnsupportedInputIsOneErrorWithItsLine) {
+    EXPECT_THAT(errorOf("<scene version=\"3.0.0\">\n  <shape type=\"obj\">\n</scene>"),
+                HasSubstr("scene.xml:3: malformed XML"));
+    EXPECT_THAT(errorOf("<scene version=\"0.6.0\"/>"),
+                HasSubstr("scene.xml:1: <scene version=\"0.6.0\">: only scene versions 2.x and 3.x"));
+    EXPECT_THAT(errorOf(scene(R"(<medium type="homogeneous"/>)")),
+                HasSubstr("scene.xml:11: <medium type=\"homogeneous\">: participating media are not supported"));
+    EXPECT_THAT(errorOf(scene(R"(<shape type="rectangle"><bsdf type="hair"/></shape>)")),
+                HasSubstr("scene.xml:11: <bsdf type=\"hair\">: this BSDF is not supported yet"));
+    EXPECT_THAT(errorOf(scene(R"(<shape type="rectangle"><float name="sharpness" value="1"/></shape>)")),
+                HasSubstr("scene.xml:11: <shape type=\"rectangle\">: the parameter 'sharpness' is not supported"));
+    EXPECT_THAT(errorOf(scene(R"(<shape type="rectangle"><ref id="nothing"/></shape>)")),
+                HasSubstr("scene.xml:11: <ref id=\"nothing\">: no object with this id before it"));
+    EXPECT_THAT(errorOf(scene(R"(<teapot/>)")),
+                HasSubstr("scene.xml:11: <teapot>: not an element of Mitsuba 3's scene language"));
+    EXPECT_THAT(errorOf(scene(R"(<shape type="rectangle"><transform name="to_world"><rotate angle="10"/></transform></shape>)")),
+                HasSubstr("scene.xml:11: <rotate>: needs a non-zero axis"));
+    EXPECT_THAT(errorOf(scene(R"(<emitter type="point"><rgb name="intensity" value="1, two, 3"/></emitter>)")),
+                HasSubstr("is not a list of numbers"));
+}
+
+TEST(MitsubaImport, StrahlJsonScenesTakeNoDefines) {
+    EXPECT_THAT(test::errorMessage([] {
+                    SceneDocument::fromText(R"({"shapes": []})", "scene.json", {{"spp", "4"}});
+                }),
+                HasSubstr("scene.json: -D spp: strahl JSON scenes have no parameters"));
+}
+
+}  // namespace
+}  // namespace strahl
