@@ -21,8 +21,15 @@ Vec4 lookup(TextureHandle texture, const TextureMapping& mapping, const ShadingP
 
 }  // namespace
 
+Color Checkerboard::at(Vec2 uv) const {
+    const float s = scale.x * uv.x, t = scale.y * (1.0f - uv.y);
+    const bool upperS = s - std::floor(s) > 0.5f, upperT = t - std::floor(t) > 0.5f;
+    return upperS == upperT ? color0 : color1;
+}
+
 Color evaluateColor(const TexturedColor& c, const TextureMapping& mapping, const ShadingPoint& sp,
                     const TextureSystem* textures) {
+    if (c.checkerboard) return c.value * c.checkerboard->at(sp.uv);
     if (!c.texture.valid() || !textures) return c.value;
     return c.value * Color(lookup(c.texture.handle, mapping, sp, *textures));
 }

@@ -21,10 +21,31 @@ fs::path textureFile(const JsonValue& v, const fs::path& folder) {
     return resolveExistingFile(folder, v, "texture file");
 }
 
-// A colour given as a number, [r, g, b], or {"texture": file, "scale": colour}.
+// {"color0": c, "color1": c, "scale": s or [su, sv]} (textured.h, Checkerboard).
+Checkerboard parseCheckerboard(const JsonValue& v) {
+    v.requireKeys({"color0", "color1", "scale"});
+    Checkerboard c;
+    if (auto c0 = v.find("color0")) c.color0 = c0->color();
+    if (auto c1 = v.find("color1")) c.color1 = c1->color();
+    if (auto scale = v.find("scale")) {
+        c.scale = scale->raw().is_array() ? scale->vec2() : Vec2(scale->number());
+        if (!(c.scale.x > 0.0f && c.scale.y > 0.0f)) scale->fail("must be positive");
+    }
+    return c;
+}
+
+// A colour given as a number, [r, g, b], {"texture": file, "scale": colour}
+// or {"checkerboard": {...}, "scale": colour}.
 void parseTexturedColor(const JsonValue& v, const fs::path& folder, TexturedColor& out) {
     if (v.raw().is_object()) {
-        v.requireKeys({"texture", "scale"});
+        v.requireKeys({"texture", "checkerboard", "scale"});
+        if (auto checker = v.find("checkerboard")) {
+            if (v.has("texture")) v.fail("'texture' and 'checkerboard' are exclusive: give one");
+            out.checkerboard = parseCheckerboard(*checker);
+            out.value = Color(1.0f);
+            if (auto scale = v.find("scale")) out.value = scale->color();
+            return;
+        }
         out.texture.file = textureFile(v.get("texture"), folder);
         out.value = Color(1.0f);
         if (auto scale = v.find("scale")) out.value = scale->color();

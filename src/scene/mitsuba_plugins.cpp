@@ -204,8 +204,9 @@ private:
     }
 
     json texture(const Object& t) {
+        if (t.type == "checkerboard") return checkerboard(t);
         if (t.type != "bitmap")
-            unsupported(t, "only bitmap textures are supported (not '" + t.type + "')");
+            unsupported(t, "only bitmap and checkerboard textures are supported (not '" + t.type + "')");
         allowOnly(t, {"filename", "raw"}, {"filter_type", "wrap_mode", "format"});
         if (t.property("to_uv")) unsupported(t, "to_uv is not supported yet");
         if (boolean(t, "raw", false))
@@ -213,6 +214,19 @@ private:
         const std::string wrap = text(t, "wrap_mode", "repeat");
         if (wrap != "repeat") unsupported(t, "wrap_mode '" + wrap + "': only repeat is supported");
         return json{{"texture", file(t, "texture image")}};
+    }
+
+    // Colours only (a nested texture is refused); to_uv a scale along u and v.
+    json checkerboard(const Object& t) {
+        allowOnly(t, {"color0", "color1", "to_uv"});
+        for (const Child& c : t.children) unsupported(*c.object, "a texture inside a checkerboard is not supported");
+        const glm::dmat4 m = transform(t, "to_uv");
+        const bool scaleOnly = m[1][0] == 0 && m[0][1] == 0 && m[3][0] == 0 && m[3][1] == 0 &&
+                               m[0][0] > 0 && m[1][1] > 0;
+        if (!scaleOnly) unsupported(t, "a to_uv other than a positive scale is not supported yet");
+        json checker = {{"color0", color(t, "color0", 0.4)}, {"color1", color(t, "color1", 0.2)},
+                        {"scale", {m[0][0], m[1][1]}}};
+        return json{{"checkerboard", checker}};
     }
 
     // --- materials ---------------------------------------------------------
@@ -274,11 +288,13 @@ private:
             shape = {{"type", "mesh"}, {"file", file(s, "mesh file")}};
         } else if (s.type == "rectangle") {
             allowOnly(s, {"to_world", "flip_normals"});
-            // [-1, 1]² in the xy plane, facing +z.
+            // [-1, 1]² in the xy plane, facing +z. Mitsuba's uv is
+            // ((x+1)/2, (y+1)/2) with its v the image row from the top;
+            // strahl's image row is 1 − v, so v = (1−y)/2 here.
             shape = {{"type", "mesh"},
                      {"positions", {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}}},
                      {"normals", {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}}},
-                     {"uvs", {{0, 0}, {1, 0}, {1, 1}, {0, 1}}},
+                     {"uvs", {{0, 1}, {1, 1}, {1, 0}, {0, 0}}},
                      {"indices", {0u, 1u, 2u, 0u, 2u, 3u}}};
         } else if (s.type == "cube") {
             allowOnly(s, {"to_world", "flip_normals"});
@@ -343,7 +359,7 @@ private:
             for (const auto& c : corners) {
                 positions.push_back(vec3(n + c[0] * a + c[1] * b));
                 normals.push_back(vec3(n));
-                uvs.push_back({(c[0] + 1) / 2, (c[1] + 1) / 2});
+                uvs.push_back({(c[0] + 1) / 2, (1 - c[1]) / 2});  // as the rectangle's
             }
             for (int i : {0, 1, 2, 0, 2, 3}) indices.push_back(static_cast<unsigned>(base + i));
         }

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <string>
 
+#include "strahl/material/diffuse.h"
 #include "strahl/scene/scene_desc.h"
 #include "strahl/scene/scene_document.h"
 #include "test_support.h"
@@ -158,6 +159,33 @@ TEST(MitsubaImport, MalformedOrUnsupportedInputIsOneErrorWithItsLine) {
                 HasSubstr("scene.xml:11: <rotate>: needs a non-zero axis"));
     EXPECT_THAT(errorOf(scene(R"(<emitter type="point"><rgb name="intensity" value="1, two, 3"/></emitter>)")),
                 HasSubstr("is not a list of numbers"));
+}
+
+TEST(MitsubaImport, CheckerboardsAreStrahlTexturedColours) {
+    const SceneDesc d = parse(scene(R"(<shape type="cube"><bsdf type="diffuse">
+    <texture name="reflectance" type="checkerboard">
+      <rgb name="color0" value="0.9"/><transform name="to_uv"><scale x="4" y="2"/></transform>
+    </texture></bsdf></shape>)"));
+    ASSERT_EQ(d.materials.size(), 2u);  // the rectangle's default and the cube's
+    const auto* diffuse = std::get_if<DiffuseMaterial>(&d.materials[1].material.kind);
+    ASSERT_NE(diffuse, nullptr);
+    ASSERT_TRUE(diffuse->color.checkerboard.has_value());
+    EXPECT_EQ(diffuse->color.checkerboard->color0, Color(0.9f));
+    EXPECT_EQ(diffuse->color.checkerboard->color1, Color(0.2f));
+    EXPECT_EQ(diffuse->color.checkerboard->scale, Vec2(4.0f, 2.0f));
+    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="diffuse">
+    <texture name="reflectance" type="checkerboard">
+      <transform name="to_uv"><rotate z="1" angle="30"/></transform>
+    </texture></bsdf></shape>)")),
+                HasSubstr("a to_uv other than a positive scale is not supported yet"));
+    // In strahl JSON: one of texture and checkerboard.
+    EXPECT_THAT(test::errorMessage([] {
+                    parseSceneText(R"({"materials": [{"name": "m", "color": {"checkerboard": {},
+                        "texture": "x.png"}}], "shapes": [{"type": "mesh",
+                        "positions": [[0,0,0],[1,0,0],[0,1,0]], "indices": [0,1,2]}]})",
+                                   "scene.json");
+                }),
+                HasSubstr("/materials/0/color: 'texture' and 'checkerboard' are exclusive"));
 }
 
 TEST(MitsubaImport, StrahlJsonScenesTakeNoDefines) {

@@ -30,7 +30,9 @@ struct Material {
     bool emits() const { return maxComponent(emission.value) > 0.0f; }
     // Emission that does not vary over the surface (no texture): such
     // triangles become area lights for next-event estimation.
-    bool hasUniformEmission() const { return emits() && !emission.texture.valid(); }
+    bool hasUniformEmission() const {
+        return emits() && !emission.texture.valid() && !emission.checkerboard;
+    }
 
     // Calls fn(TextureRef&, TextureEncoding) for every texture the material
     // can use, bound or not: the kind's, then the emission's and the normal map.

@@ -5,6 +5,7 @@
 // from these.
 
 #include <filesystem>
+#include <optional>
 
 #include "strahl/core/math.h"
 #include "strahl/texture/texture_system.h"
@@ -20,10 +21,22 @@ struct TextureRef {
     bool valid() const { return handle.valid(); }
 };
 
-// A colour, optionally multiplied by a texture's RGB.
+// A procedural checkerboard (Mitsuba's `checkerboard`): in the texture
+// coordinates of image textures, (s, t) = (u, 1 − v) scaled by `scale`, a
+// point is color0 where frac(s) and frac(t) are both above 1/2 or both not,
+// color1 elsewhere; so `scale` (n, n) gives n × n squares over [0, 1]².
+// Evaluated at the point, unfiltered.
+struct Checkerboard {
+    Color color0{0.4f}, color1{0.2f};
+    Vec2 scale{1.0f};
+    Color at(Vec2 uv) const;
+};
+
+// A colour, optionally multiplied by a texture's RGB or a checkerboard.
 struct TexturedColor {
     Color value{1.0f};
     TextureRef texture;
+    std::optional<Checkerboard> checkerboard = std::nullopt;  // exclusive with texture
 };
 
 // A scalar, optionally multiplied by one channel of a texture.
