@@ -424,7 +424,9 @@ private:
             camera["focal_distance"] = number(s, "near_clip", 1e-2);
             if (s.type == "thinlens") {
                 camera["aperture_radius"] = number(s, "aperture_radius", 0.0);
-                camera["focus_distance"] = number(s, "focus_distance", 0.0);
+                // Absent: strahl's default, the focal distance.
+                if (s.property("focus_distance"))
+                    camera["focus_distance"] = number(s, "focus_distance", 0.0);
             }
         } else if (s.type == "orthographic") {
             allowOnly(s, {"to_world", "near_clip"}, {"far_clip"});

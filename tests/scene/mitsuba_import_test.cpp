@@ -79,6 +79,21 @@ TEST(MitsubaImport, WithoutAFovTheSensorHasMitsubasFiftyMillimetreLens) {
     EXPECT_NEAR(*parse(text).camera.fovYDegrees, 2 * std::atan(ty) * 180 / M_PI, 1e-3);
 }
 
+TEST(MitsubaImport, AThinLensSensorKeepsItsLens) {
+    std::string text = scene("");
+    text.replace(text.find(R"(<sensor type="perspective">)"), 27,
+                 R"(<sensor type="thinlens"><float name="aperture_radius" value="0.1"/>)");
+    const SceneDesc lens = parse(text);
+    EXPECT_FLOAT_EQ(lens.camera.apertureRadius, 0.1f);
+    EXPECT_FALSE(lens.camera.focusDistance.has_value());  // strahl's default: the focal distance
+    text.replace(text.find("<float name=\"aperture_radius\""), 0,
+                 R"(<float name="focus_distance" value="4"/>)");
+    EXPECT_FLOAT_EQ(*parse(text).camera.focusDistance, 4.0f);
+    EXPECT_THAT(errorOf(scene(R"()").replace(scene("").find("<float name=\"fov\""), 0,
+                                              R"(<float name="aperture_radius" value="0.1"/>)")),
+                HasSubstr("aperture_radius and focus_distance belong to a thinlens sensor"));
+}
+
 TEST(MitsubaImport, MaxDepthCountsVerticesInMitsubaAndBouncesInStrahl) {
     const auto depth = [](const std::string& value) {
         return parse(scene("", R"(<integrator type="path"><integer name="max_depth" value=")" +
