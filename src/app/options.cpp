@@ -184,6 +184,15 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
     render->add_option("--max-depth", o.maxDepth,
                        "Path tracer: maximum bounces (overrides render.max_depth, default 8)")
         ->check(CLI::Range(0, 1024));
+    render->add_option("--clamp-direct", o.clampDirect,
+                       "Path tracer: the most one sample's direct light (after one reflection) "
+                       "may bring, largest channel; cuts fireflies, biased; 0 = off (overrides "
+                       "render.clamp_direct)")
+        ->check(CLI::Range(0.0f, 1e30f));
+    render->add_option("--clamp-indirect", o.clampIndirect,
+                       "Path tracer: the same for indirect light (two or more reflections); 0 = "
+                       "off (overrides render.clamp_indirect)")
+        ->check(CLI::Range(0.0f, 1e30f));
     std::string cropText;
     render->add_option("--crop", cropText,
                        "Render only pixels X0<=x<X1, Y0<=y<Y1 (y=0 at the top): X0,Y0,X1,Y1");

@@ -26,6 +26,7 @@ struct Options {
     // render
     std::vector<std::string> outputs;  // overrides the scene's film.outputs
     std::optional<int> width, height, spp, threads, maxDepth;
+    std::optional<float> clampDirect, clampIndirect;
     std::optional<std::string> integrator;
     std::optional<uint64_t> seed;
     std::optional<PixelRect> crop;  // from --crop or --region (the farm's spelling)

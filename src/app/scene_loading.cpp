@@ -30,6 +30,10 @@ std::vector<ScenePatch> scenePatches(const Options& o) {
     if (o.integrator) add("/render/integrator", *o.integrator, flag("--integrator", *o.integrator));
     if (o.maxDepth) add("/render/max_depth", *o.maxDepth, flag("--max-depth", *o.maxDepth));
     if (o.seed) add("/render/seed", *o.seed, flag("--seed", *o.seed));
+    if (o.clampDirect)
+        add("/render/clamp_direct", *o.clampDirect, flag("--clamp-direct", *o.clampDirect));
+    if (o.clampIndirect)
+        add("/render/clamp_indirect", *o.clampIndirect, flag("--clamp-indirect", *o.clampIndirect));
     if (o.exrFloat) add("/film/exr_float", true, "--exr-float");
     if (!o.aovs.empty()) {
         std::vector<std::string> aovs;  // each once, in the order first given

@@ -15,6 +15,12 @@
 // q = min(1, max(beta * etaScale)), dividing beta by q; etaScale undoes the
 // 1/eta^2 radiance scaling of refraction so paths inside glass are not killed
 // for it (pbrt-v4).
+//
+// Sample clamping (Cycles' "clamp direct/indirect", off by default, biased):
+// the light a sample gathers is kept in three sums by the reflections it took
+// to reach the camera: none (emitters seen, never clamped), one (direct) and
+// more (indirect). At the end the direct and the indirect sum are each scaled
+// down so that their largest channel is at most their clamp.
 
 #include "path_integrator.h"
 
@@ -25,10 +31,28 @@
 
 namespace strahl {
 
+namespace {
+
+// `light` scaled down so its largest channel is at most `limit` (0: as is).
+Color clamped(const Color& light, float limit) {
+    const float largest = maxComponent(light);
+    return limit > 0.0f && largest > limit ? light * (limit / largest) : light;
+}
+
+}  // namespace
+
 Color PathIntegrator::shade(const World& world, const SurfaceHit& first, Sampler& sampler,
                             ShadingStats& stats) const {
     const LightSampling mode = options_.sampling;
-    Color L(0.0f), beta(1.0f);
+    // Without clamping every contribution goes into L in path order (the
+    // images of unclamped renders do not depend on the clamp code); with it,
+    // direct (one reflection before the camera) and indirect (more) light
+    // are summed apart, to be clamped at the end.
+    const bool clamping = options_.clampDirect > 0.0f || options_.clampIndirect > 0.0f;
+    Color L(0.0f), direct(0.0f), indirect(0.0f), beta(1.0f);
+    const auto add = [&](const Color& light, int reflections) {
+        (!clamping || reflections == 0 ? L : reflections == 1 ? direct : indirect) += light;
+    };
     bool specularBounce = false;
     float etaScale = 1.0f;
     float prevBsdfPdf = 0.0f;
@@ -55,7 +79,7 @@ Color PathIntegrator::shade(const World& world, const SurfaceHit& first, Sampler
             for (uint32_t i : world.lightSet.infiniteLights()) {
                 const Light& light = world.lightSet.lights()[i];
                 const Color Le = infiniteLe(light, dir);
-                if (maxComponent(Le) > 0.0f) L += beta * Le * emitterWeight(i, dir, Vec3(0.0f));
+                if (maxComponent(Le) > 0.0f) add(beta * Le * emitterWeight(i, dir, Vec3(0.0f)), depth);
             }
             break;
         }
@@ -69,12 +93,12 @@ Color PathIntegrator::shade(const World& world, const SurfaceHit& first, Sampler
             const uint32_t areaLight = world.areaLightOf(hit);
             const Color Le = emittedTowards(world, ctx, areaLight);
             if (maxComponent(Le) > 0.0f)
-                L += beta * Le * emitterWeight(areaLight, -ctx.wo, ctx.si->p);
+                add(beta * Le * emitterWeight(areaLight, -ctx.wo, ctx.si->p), depth);
         }
         if (depth >= options_.maxDepth) break;
 
         if (!ctx.bsdf.isSpecular() && mode != LightSampling::BsdfOnly)
-            L += beta * sampleDirectLight(world, ctx, sampler, mode, stats);
+            add(beta * sampleDirectLight(world, ctx, sampler, mode, stats), depth + 1);
 
         const float uLobe = sampler.get1D();
         const std::optional<BsdfSample> bs = ctx.bsdf.sample(ctx.toLocal(ctx.wo), uLobe,
@@ -103,7 +127,8 @@ Color PathIntegrator::shade(const World& world, const SurfaceHit& first, Sampler
             }
         }
     }
-    return L;
+    if (!clamping) return L;
+    return L + clamped(direct, options_.clampDirect) + clamped(indirect, options_.clampIndirect);
 }
 
 }  // namespace strahl

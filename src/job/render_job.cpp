@@ -182,6 +182,11 @@ ImageMetadata imageMetadata(const RenderJob& job, const SceneDocument& document,
     metadata.extra["algorithm"] = algorithmName(job.algorithm);
     metadata.extra["fingerprint"] = fingerprint;
     if (job.frame) metadata.extra["frame"] = std::to_string(*job.frame);
+    // Biased settings are said in the image itself (docs/output.md).
+    if (desc.render.clampDirect > 0.0f)
+        metadata.extra["clamp_direct"] = std::to_string(desc.render.clampDirect);
+    if (desc.render.clampIndirect > 0.0f)
+        metadata.extra["clamp_indirect"] = std::to_string(desc.render.clampIndirect);
     const bool partial = stats.cancelled || stats.stoppedEarly;
     if (job.algorithm == RenderAlgorithm::RayTrace) {
         // Every pixel has at least completedPasses samples; after an interrupt

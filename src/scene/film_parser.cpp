@@ -73,7 +73,7 @@ FilmDesc parseFilm(const JsonValue& v, const fs::path& folder) {
 
 RenderDesc parseRender(const JsonValue& v) {
     v.requireKeys({"integrator", "spp", "seed", "max_depth", "russian_roulette", "ao_distance",
-                   "ao_samples"});
+                   "ao_samples", "clamp_direct", "clamp_indirect"});
     RenderDesc r;
     if (auto integrator = v.find("integrator"))
         r.integrator = integrator->oneOf(integratorNames());
@@ -88,6 +88,12 @@ RenderDesc parseRender(const JsonValue& v) {
         if (!(r.aoDistance >= 0.0f)) distance->fail("must be non-negative, got ", r.aoDistance);
     }
     if (auto samples = v.find("ao_samples")) r.aoSamples = static_cast<int>(samples->integer(1, 4096));
+    for (auto [key, value] : {std::pair{"clamp_direct", &r.clampDirect},
+                              std::pair{"clamp_indirect", &r.clampIndirect}})
+        if (auto clamp = v.find(key)) {
+            *value = clamp->number();
+            if (!(*value >= 0.0f)) clamp->fail("must be non-negative (0: off), got ", *value);
+        }
     return r;
 }
 

@@ -352,6 +352,8 @@ IntegratorOptions buildIntegratorOptions(const SceneDesc& desc, const Camera& ca
     IntegratorOptions options;
     options.maxDepth = desc.render.maxDepth;
     options.russianRoulette = desc.render.russianRoulette;
+    options.clampDirect = desc.render.clampDirect;
+    options.clampIndirect = desc.render.clampIndirect;
     options.aoDistance = desc.render.aoDistance;
     options.aoSamples = desc.render.aoSamples;
     // One pixel's extent on the image plane: a width for orthographic rays,

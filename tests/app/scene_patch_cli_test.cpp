@@ -112,5 +112,33 @@ TEST(ScenePatchCli, InfoTakesPatchesToo) {
     EXPECT_TRUE(contains(r.out, " 1 triangles")) << r.out;
 }
 
+// --clamp-direct and --clamp-indirect are scene patches like every flag: the
+// image of --set, a fingerprint of their own, and, being biased, said in the
+// image's metadata.
+TEST(ScenePatchCli, ClampFlagsArePatchesAndRecordedInTheImage) {
+    const fs::path dir = test::scratchDir("clamp-cli");
+    test::writeFile(dir / "quad.json", kQuad);
+    const std::string scene = (dir / "quad.json").string() + " -q --integrator path";
+    ASSERT_EQ(runStrahl("render " + scene + " --clamp-direct 0.25 -o " + (dir / "flag.exr").string()).status, 0);
+    ASSERT_EQ(runStrahl("render " + scene + " --set /render/clamp_direct=0.25 -o " +
+                        (dir / "set.exr").string())
+                  .status,
+              0);
+    ASSERT_EQ(runStrahl("render " + scene + " -o " + (dir / "plain.exr").string()).status, 0);
+    const test::ExrFile flag = readExr(dir / "flag.exr"), set = readExr(dir / "set.exr"),
+                        plain = readExr(dir / "plain.exr");
+    test::expectIdentical(flag, set, "--clamp-direct and --set");
+    EXPECT_EQ(flag.fingerprint, set.fingerprint);
+    EXPECT_NE(flag.fingerprint, plain.fingerprint);
+    auto in = OIIO::ImageInput::open((dir / "flag.exr").string());
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->spec().get_string_attribute("strahl:clamp_direct"), "0.250000");
+    EXPECT_EQ(in->spec().get_string_attribute("strahl:clamp_indirect"), "");
+    const test::RunResult bad = runStrahl("render " + scene + " --clamp-indirect -1 -o " +
+                                          (dir / "bad.exr").string());
+    EXPECT_EQ(bad.status, 2) << bad.err;
+    EXPECT_FALSE(fs::exists(dir / "bad.exr"));
+}
+
 }  // namespace
 }  // namespace strahl

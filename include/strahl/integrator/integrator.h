@@ -42,6 +42,10 @@ enum class LightSampling { Mis, BsdfOnly, LightOnly };
 struct IntegratorOptions {
     int maxDepth = 8;          // path: bounces; 0 shows emitters only
     bool russianRoulette = true;
+    // path: the largest channel of one sample's light after one reflection
+    // (direct) or more (indirect); 0: not clamped (docs/scene-format.md#render).
+    float clampDirect = 0.0f;
+    float clampIndirect = 0.0f;
     LightSampling sampling = LightSampling::Mis;
     float aoDistance = 0.0f;   // ao: occluder search distance; 0: the scene's diagonal / 4
     int aoSamples = 1;         // ao: rays per camera sample

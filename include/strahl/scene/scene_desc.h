@@ -86,6 +86,11 @@ struct RenderDesc {
     uint64_t seed = 0;
     int maxDepth = 8;            // path
     bool russianRoulette = true; // path
+    // path: Cycles-style sample clamping, biased and off (0) by default: the
+    // light of one sample after one reflection (direct) or more (indirect) is
+    // scaled down so its largest channel is at most this.
+    float clampDirect = 0.0f;
+    float clampIndirect = 0.0f;
     float aoDistance = 0.0f;     // ao (0: a quarter of the scene diagonal)
     int aoSamples = 1;           // ao
 };
