@@ -4,7 +4,6 @@
 // written file gives the same image, bit for bit, as rendering the original.
 
 #include <cstdio>
-#include <fstream>
 
 #include "commands.h"
 #include "scene_loading.h"
@@ -20,13 +19,7 @@ int runConvert(const Options& o) {
         fail(out.string(), ": cannot write: folder '", folder.string(), "' does not exist");
     const SceneDocument document = patchedScene(o);
     document.parse();  // what would not render is an error now, not when it is rendered
-    const std::string text = document.textFor(out);
-    writeFileAtomically(out, [&](const std::filesystem::path& temp) {
-        std::ofstream file(temp, std::ios::binary | std::ios::trunc);
-        file << text;
-        file.close();
-        return file ? std::string() : std::string("write failed (disk full?)");
-    });
+    writeTextFileAtomically(out, document.textFor(out));
     if (!o.quiet) std::fprintf(stderr, "wrote %s\n", out.string().c_str());
     return 0;
 }

@@ -1,5 +1,7 @@
 #include "strahl/film/image_output.h"
 
+#include <fstream>
+
 #include <OpenImageIO/imageio.h>
 #include <unistd.h>
 
@@ -296,6 +298,15 @@ void writeImage(const Film& film, const fs::path& file, const OutputSettings& se
         const std::vector<uint8_t> pixels = quantise<uint8_t>(rgb);
         writeFile(file, format, spec, type, pixels.data());
     }
+}
+
+void writeTextFileAtomically(const std::filesystem::path& file, const std::string& text) {
+    writeFileAtomically(file, [&](const std::filesystem::path& temp) {
+        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+        out << text;
+        out.close();
+        return out ? std::string() : std::string("write failed (disk full?)");
+    });
 }
 
 }  // namespace strahl

@@ -41,12 +41,14 @@ RenderJob withFrameNames(RenderJob job) {
     return job;
 }
 
-// The scene's film.outputs, or the job's instead, with their frame patterns
-// filled.
+// The job's outputs (their frame patterns filled by withFrameNames), or else
+// the scene's film.outputs with theirs filled.
 std::vector<fs::path> outputFiles(const RenderJob& job, const SceneDesc& desc) {
-    std::vector<fs::path> outputs = job.outputs.empty() ? desc.film.outputs : job.outputs;
-    for (fs::path& out : outputs)
-        out = expandFramePattern(out, job.frame.value_or(-1), job.scene.string() + ": film.outputs:");
+    std::vector<fs::path> outputs = job.outputs;
+    if (outputs.empty())
+        for (const fs::path& out : desc.film.outputs)
+            outputs.push_back(expandFramePattern(out, job.frame.value_or(-1),
+                                                 job.scene.string() + ": film.outputs:"));
     if (outputs.empty())
         fail(job.scene.string(), ": no output image: give -o FILE or film.outputs in the scene");
     return outputs;

@@ -93,13 +93,7 @@ void checkStatsPath(const fs::path& file) {
 }
 
 void writeStatsFile(const fs::path& file, const RunReport& report) {
-    const std::string text = statsJson(report).dump(2) + "\n";
-    writeFileAtomically(file, [&](const fs::path& temp) {
-        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-        out << text;
-        out.close();
-        return out ? std::string() : std::string("write failed (disk full?)");
-    });
+    writeTextFileAtomically(file, statsJson(report).dump(2) + "\n");
 }
 
 }  // namespace strahl

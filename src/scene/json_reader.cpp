@@ -206,24 +206,13 @@ std::optional<uint64_t> JsonValue::integerOrNone() const {
 }
 
 uint64_t JsonValue::unsignedInteger(uint64_t hi) const {
-    if (!value_->is_number()) fail("expected an integer, got ", describe());
-    bool inRange = false;
-    uint64_t result = 0;
-    if (value_->is_number_unsigned()) {
-        result = value_->get<uint64_t>();
-        inRange = result <= hi;
-    } else if (value_->is_number_float()) {
-        const double d = value_->get<double>();
-        if (std::trunc(d) != d) fail("expected an integer, got ", describe());
-        inRange = d >= 0.0 && d < 0x1p64 && static_cast<uint64_t>(d) <= hi;
-        result = inRange ? static_cast<uint64_t>(d) : 0;
-    }  // else a negative integer: out of range
-    if (!inRange) {
+    const std::optional<uint64_t> value = integerOrNone();
+    if (!value || *value > hi) {
         if (hi == std::numeric_limits<uint64_t>::max())
             fail("must be a non-negative integer, got ", value_->dump());
         fail("must be between 0 and ", hi, ", got ", value_->dump());
     }
-    return result;
+    return *value;
 }
 
 // --- vectors and colours -------------------------------------------------------

@@ -238,7 +238,7 @@ private:
         p.place = place;
         p.name = attribute(node, "name", place);
         if (tag == "transform") {
-            p.matrix = readTransform(node, source, place);
+            p.matrix = readTransform(node, source);
         } else if (tag == "point" || tag == "vector") {
             if (node.attribute("value")) {
                 p.value = attribute(node, "value", place);
@@ -280,7 +280,7 @@ private:
     }
 
     // The operations in order, each applied after those before it.
-    glm::dmat4 readTransform(const pugi::xml_node& node, const Source& source, const Place&) {
+    glm::dmat4 readTransform(const pugi::xml_node& node, const Source& source) {
         glm::dmat4 m(1.0);
         for (const pugi::xml_node& op : node.children()) {
             if (op.type() != pugi::node_element) continue;

@@ -73,4 +73,7 @@ void writeImage(const Film& film, const std::filesystem::path& file, const Outpu
 void writeFileAtomically(const std::filesystem::path& file,
                          const std::function<std::string(const std::filesystem::path& temp)>& write);
 
+// writeFileAtomically for a text file (a stats file, a converted scene).
+void writeTextFileAtomically(const std::filesystem::path& file, const std::string& text);
+
 }  // namespace strahl
