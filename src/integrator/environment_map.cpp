@@ -36,10 +36,13 @@ Vec2 EnvironmentMap::uv(const Vec3& dir) {
     return Vec2(u, std::clamp(v, 0.0f, 1.0f));
 }
 
-EnvironmentMap::EnvironmentMap(int width, int height, std::vector<Color> texels)
-    : width_(width), height_(height), texels_(std::move(texels)) {
+EnvironmentMap::EnvironmentMap(int width, int height, std::vector<Color> texels,
+                               RowLayout rows)
+    : width_(width), height_(height), texels_(std::move(texels)), rows_(rows) {
     if (width <= 0 || height <= 0)
         fail("environment map: empty image (", width, " x ", height, ")");
+    if (rows == RowLayout::PoleToPole && height < 2)
+        fail("environment map: ", height, " row; rows from pole to pole need at least two");
     const auto w = static_cast<size_t>(width), h = static_cast<size_t>(height);
     if (texels_.size() != w * h)
         fail("environment map: ", texels_.size(), " texels for ", width, " x ", height);
@@ -56,6 +59,10 @@ EnvironmentMap::EnvironmentMap(int width, int height, std::vector<Color> texels)
     // (c[x-1] + 6 c[x] + c[x+1]) / 8, and in 2D the tensor product of that. A
     // weight is thus > 0 wherever lookup() is > 0 (no radiance is unreachable by
     // light sampling) and tracks the bilinear image's mean over the texel.
+    // With rows from pole to pole a cell of the distribution still only blends
+    // the rows next to its own (row y's band of v reaches rows y - 1 to y + 1),
+    // so the same weights stay > 0 wherever lookup() is; they track the mean a
+    // little less closely, which costs variance, not correctness.
     std::vector<float> lum(w * h);
     for (size_t i = 0; i < lum.size(); ++i) lum[i] = luminance(texels_[i]);
     std::vector<float> horizontal(w * h);  // columns wrap, as in lookup()
@@ -89,9 +96,10 @@ EnvironmentMap::EnvironmentMap(int width, int height, std::vector<Color> texels)
 
 Color EnvironmentMap::lookup(const Vec3& dir) const {
     const Vec2 st = uv(dir);
-    // Continuous texel coordinates with texel centres at integers.
+    // Continuous texel coordinates with texel values at integers.
     const float s = st.x * static_cast<float>(width_) - 0.5f;
-    const float t = st.y * static_cast<float>(height_) - 0.5f;
+    const float t = rows_ == RowLayout::PoleToPole ? st.y * static_cast<float>(height_ - 1)
+                                                   : st.y * static_cast<float>(height_) - 0.5f;
     const float sFloor = std::floor(s), tFloor = std::floor(t);
     const float fs = s - sFloor, ft = t - tFloor;
     const int x0 = wrap(static_cast<int>(sFloor), width_), x1 = wrap(x0 + 1, width_);

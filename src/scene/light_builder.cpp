@@ -12,7 +12,7 @@ namespace {
 constexpr size_t kMaxEnvironmentPixels = size_t(1) << 27;
 
 std::shared_ptr<const EnvironmentMap> loadEnvironment(const std::filesystem::path& file,
-                                                      const LightDesc& desc,
+                                                      RowLayout rows, const LightDesc& desc,
                                                       const SceneDesc& scene) {
     try {
         const FloatImage image = readFloatImage(file, "environment image",
@@ -23,7 +23,7 @@ std::shared_ptr<const EnvironmentMap> loadEnvironment(const std::filesystem::pat
             const float* p = &image.pixels[k * static_cast<size_t>(image.channels)];
             texels[k] = image.channels == 3 ? Color(p[0], p[1], p[2]) : Color(p[0]);
         }
-        return std::make_shared<EnvironmentMap>(image.width, image.height, std::move(texels));
+        return std::make_shared<EnvironmentMap>(image.width, image.height, std::move(texels), rows);
     } catch (const Error& e) {
         fail(scene.file.filename().string(), ": ", desc.where, ": ", e.what());
     }
@@ -35,8 +35,8 @@ Light buildLight(const LightDesc& desc, const SceneDesc& scene) {
     Light light = desc.light;
     std::visit(
         [&](auto& kind) {
-            kind.load([&](const std::filesystem::path& file) {
-                return loadEnvironment(file, desc, scene);
+            kind.load([&](const std::filesystem::path& file, RowLayout rows) {
+                return loadEnvironment(file, rows, desc, scene);
             });
         },
         light.kind);

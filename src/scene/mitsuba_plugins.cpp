@@ -1,10 +1,14 @@
 #include "mitsuba_plugins.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <map>
 #include <set>
 
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "spectrum_to_rgb.h"
 #include "strahl/core/error.h"
 
 namespace strahl::scene_detail::mitsuba {
@@ -192,15 +196,62 @@ private:
             if (v.size() == 3) return json::array({v[0], v[1], v[2]});
             fail(p->place.text(), ": '", name, "': expected 1 or 3 numbers");
         }
-        if (p->tag == "spectrum") {
-            if (p->value.find(':') != std::string::npos)
-                fail(p->place.text(), ": <spectrum name=\"", name,
-                     "\">: spectra given per wavelength are not supported yet (give <rgb>)");
-            const std::vector<double> v = numbers(p->value, p->place, name);
-            if (v.size() != 1) fail(p->place.text(), ": '", name, "': expected one number");
-            return v[0];
-        }
+        if (p->tag == "spectrum") return spectrum(*p, o.tag == "emitter");
         fail(p->place.text(), ": '", name, "' must be <rgb>, <spectrum>, <float> or a texture");
+    }
+
+    // A <spectrum> as Mitsuba's RGB variants read it (docs/mitsuba.md):
+    // wavelength:value pairs integrated against the CIE curves (weighted by
+    // D65 for a reflectance; clamped to [0, 1] unless it is emitted light or
+    // an index of refraction); one value is a constant spectrum, which an
+    // emitter gives in Mitsuba's equal-energy white.
+    static json spectrum(const Property& p, bool inEmitter) {
+        static const std::set<std::string> unbounded = {"eta", "k", "int_ior", "ext_ior"};
+        const bool isUnbounded = unbounded.count(p.name) > 0;
+        if (p.value.find(':') == std::string::npos) {
+            const std::vector<double> v = numbers(p.value, p.place, p.name);
+            if (v.size() != 1) fail(p.place.text(), ": '", p.name, "': expected one number");
+            if (!inEmitter || isUnbounded) return v[0];
+            return vec3(v[0] * equalEnergyWhiteInLinearSrgb());
+        }
+        std::vector<double> wavelengths, values;
+        for (const std::string& pair : spectrumPairs(p.value)) {
+            const size_t colon = pair.find(':');
+            if (colon == std::string::npos || pair.find(':', colon + 1) != std::string::npos)
+                fail(p.place.text(), ": <spectrum name=\"", p.name, "\">: '", pair,
+                     "' is not a wavelength:value pair");
+            const std::vector<double> wv =
+                numbers(pair.substr(0, colon) + " " + pair.substr(colon + 1), p.place, p.name);
+            if (wv.size() != 2)
+                fail(p.place.text(), ": <spectrum name=\"", p.name, "\">: '", pair,
+                     "' is not a wavelength:value pair");
+            if (!wavelengths.empty() && !(wv[0] > wavelengths.back()))
+                fail(p.place.text(), ": <spectrum name=\"", p.name,
+                     "\">: wavelengths must increase (", wv[0], " after ", wavelengths.back(), ")");
+            wavelengths.push_back(wv[0]);
+            values.push_back(wv[1]);
+        }
+        if (wavelengths.size() < 2)
+            fail(p.place.text(), ": <spectrum name=\"", p.name, "\">: needs at least two wavelengths");
+        glm::dvec3 rgb = spectrumToLinearSrgb(
+            wavelengths, values, inEmitter && !isUnbounded ? SpectrumUse::Emission : SpectrumUse::Reflectance);
+        rgb = glm::max(rgb, 0.0);
+        if (!inEmitter && !isUnbounded) rgb = glm::min(rgb, 1.0);
+        return vec3(rgb);
+    }
+
+    // "400:0.1, 500:0.3" → {"400:0.1", "500:0.3"} (commas and/or blanks between pairs).
+    static std::vector<std::string> spectrumPairs(const std::string& text) {
+        std::vector<std::string> pairs;
+        std::string current;
+        for (const char c : text + ",") {
+            if (c == ',' || std::isspace(static_cast<unsigned char>(c))) {
+                if (!current.empty()) pairs.push_back(current), current.clear();
+            } else {
+                current += c;
+            }
+        }
+        return pairs;
     }
 
     json texture(const Object& t) {
@@ -387,11 +438,35 @@ private:
             allowOnly(e, {"radiance"});
             if (doc_.contains("background")) unsupported(e, "a second constant emitter");
             doc_["background"] = color(e, "radiance", 1.0);
+        } else if (e.type == "envmap") {
+            allowOnly(e, {"filename", "scale", "to_world"}, {"mis_compensation"});
+            // Mitsuba's lat-long map: u = atan2(x, -z) / 2π, so its image
+            // centre looks along +z, where strahl's looks along +x: the same
+            // map turned -90° about +y (docs/mitsuba.md). Its rows run from
+            // pole to pole.
+            const double rotation = -90.0 + rotationAboutY(e, toWorld);
+            lights_.push_back({{"type", "environment"},
+                               {"file", file(e, "environment image")},
+                               {"scale", number(e, "scale", 1.0)},
+                               {"rotation", std::remainder(rotation, 360.0)},
+                               {"rows", "poles"}});
         } else if (e.type == "area") {
             unsupported(e, "an area emitter belongs inside a <shape>");
         } else {
             unsupported(e, "this emitter is not supported yet (docs/mitsuba.md lists those that are)");
         }
+    }
+
+    // The angle in degrees of a to_world that turns about +y only (strahl's
+    // environment light turns that way); any other is refused.
+    static double rotationAboutY(const Object& e, const glm::dmat4& m) {
+        const double angle = std::atan2(m[2][0], m[0][0]);  // where +z goes: (sin a, 0, cos a)
+        const glm::dmat4 expected = glm::rotate(glm::dmat4(1.0), angle, glm::dvec3(0, 1, 0));
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r)
+                if (std::abs(m[c][r] - expected[c][r]) > 1e-6)
+                    unsupported(e, "a to_world other than a rotation about +y is not supported yet");
+        return glm::degrees(angle);
     }
 
     // --- sensor, film, sampler ---------------------------------------------
@@ -521,9 +596,10 @@ private:
             integrator(*inner->object);
             return;
         }
-        if (i.type == "path" || i.type == "ptracer") {
-            // ptracer traces from the lights; its expected image is the path
-            // tracer's.
+        if (i.type == "path" || i.type == "ptracer" || i.type == "volpath" || i.type == "volpathmis") {
+            // ptracer traces from the lights; volpath and volpathmis add
+            // media, which a scene reaching here has none of (they are refused
+            // first): the expected image of each is the path tracer's.
             allowOnly(i, {"max_depth", "rr_depth"}, {"hide_emitters", "samples_per_pass"});
             if (boolean(i, "hide_emitters", false)) unsupported(i, "hide_emitters is not supported");
             const int maxDepth = integer(i, "max_depth", -1);
@@ -543,7 +619,7 @@ private:
             render_.erase("max_depth");
             return;
         }
-        unsupported(i, "this integrator is not supported (path, direct, ptracer, moment, aov are)");
+        unsupported(i, "this integrator is not supported (path, volpath, volpathmis, direct, ptracer, moment, aov are)");
     }
 
     const Scene& scene_;

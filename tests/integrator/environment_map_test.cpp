@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -139,16 +140,41 @@ TEST(EnvironmentMap, OneBrightTexelAttractsTheSamples) {
     EXPECT_NEAR(static_cast<double>(inTexel) / n, 36.0 / 64.0, 0.03);
 }
 
-TEST(EnvironmentMap, ImportanceSamplingIntegratesTheBilinearRadiance) {
+TEST(EnvironmentMap, RowsFromPoleToPoleSitOnTheZenithAndTheNadir) {
+    const int w = 8, h = 5;
+    const EnvironmentMap map = [&] {
+        const EnvironmentMap random = randomMap(w, h, 21);
+        std::vector<Color> texels;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) texels.push_back(random.texel(x, y));
+        return EnvironmentMap(w, h, texels, RowLayout::PoleToPole);
+    }();
+    EXPECT_EQ(map.rows(), RowLayout::PoleToPole);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            // Row y at v = y / (h - 1); columns at their centres as always.
+            // On the poles themselves all columns meet in one direction, so
+            // the first and last rows are looked at a hair (1e-5) away.
+            const float v = std::clamp(static_cast<float>(y) / (h - 1), 1e-5f, 1.0f - 1e-5f);
+            const Vec3 dir = EnvironmentMap::direction(Vec2((x + 0.5f) / w, v));
+            expectNear(map.lookup(dir), map.texel(x, y), 1e-3f);
+        }
+    EXPECT_THROW(EnvironmentMap(2, 1, {Color(1.0f), Color(1.0f)}, RowLayout::PoleToPole), Error);
+}
+
+class EnvironmentMapLayouts : public testing::TestWithParam<RowLayout> {};
+
+TEST_P(EnvironmentMapLayouts, ImportanceSamplingIntegratesTheBilinearRadiance) {
     // Sparse bright texels on black: the estimate sum L / pdf over samples must
     // converge to the integral of lookup() over the sphere (computed here by a
-    // fine midpoint rule), so no radiance is out of reach of the sampler.
+    // fine midpoint rule), so no radiance is out of reach of the sampler,
+    // whichever row layout.
     const int w = 16, h = 8;
     std::vector<Color> texels(static_cast<size_t>(w * h), Color(0.0f));
     texels[3 * w + 5] = Color(8.0f);
     texels[0 * w + 0] = Color(2.0f, 0.5f, 0.0f);
     texels[6 * w + 15] = Color(0.0f, 0.0f, 4.0f);
-    const EnvironmentMap map(w, h, texels);
+    const EnvironmentMap map(w, h, texels, GetParam());
     glm::dvec3 reference(0.0);
     const int nu = 16 * w, nv = 16 * h;
     for (int y = 0; y < nv; ++y)
@@ -169,6 +195,9 @@ TEST(EnvironmentMap, ImportanceSamplingIntegratesTheBilinearRadiance) {
     estimate /= n;
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(estimate[c] / reference[c], 1.0, 0.02) << c;
 }
+
+INSTANTIATE_TEST_SUITE_P(RowLayouts, EnvironmentMapLayouts,
+                         testing::Values(RowLayout::Centred, RowLayout::PoleToPole));
 
 TEST(EnvironmentMap, AverageIsTheMeanOverTheSphere) {
     const EnvironmentMap constant(8, 4, std::vector<Color>(32, Color(0.5f, 1.0f, 2.0f)));

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <string>
 
+#include "strahl/integrator/environment_light.h"
 #include "strahl/material/diffuse.h"
 #include "strahl/scene/scene_desc.h"
 #include "strahl/scene/scene_document.h"
@@ -201,6 +202,88 @@ TEST(MitsubaImport, CheckerboardsAreStrahlTexturedColours) {
                                    "scene.json");
                 }),
                 HasSubstr("/materials/0/color: 'texture' and 'checkerboard' are exclusive"));
+}
+
+// The colour of the first emitting material's emission, or the diffuse
+// colour of material `index`.
+Color emissionOf(const SceneDesc& d) {
+    for (const auto& m : d.materials)
+        if (m.material.emits()) return m.material.emission.value;
+    ADD_FAILURE() << "no emitting material";
+    return Color(0.0f);
+}
+Color diffuseColour(const SceneDesc& d, size_t index) {
+    const auto* diffuse = std::get_if<DiffuseMaterial>(&d.materials.at(index).material.kind);
+    if (!diffuse) ADD_FAILURE() << "material " << index << " is not diffuse";
+    return diffuse ? diffuse->color.value : Color(0.0f);
+}
+float luminance(const Color& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+
+std::string spectralRectangle(const std::string& reflectance, const std::string& radiance) {
+    return R"(<shape type="rectangle"><bsdf type="diffuse"><spectrum name="reflectance" value=")" +
+           reflectance + R"("/></bsdf><emitter type="area"><spectrum name="radiance" value=")" +
+           radiance + R"("/></emitter></shape>)";
+}
+
+TEST(MitsubaImport, SpectraBecomeRgbAsInMitsubasRgbVariants) {
+    // A constant reflectance is that grey (D65 is a reflectance's white).
+    SceneDesc d = parse(scene(spectralRectangle("360:0.5, 830:0.5", "400:0, 500:8, 600:15.6, 700:18.4")));
+    const Color grey = diffuseColour(d, 1);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(grey[c], 0.5f, 1e-3f) << c;
+    // Emitted light is integrated without D65: a constant 1 over the visible
+    // range has luminance 1 and is the equal-energy white, (1.2048, 0.9483,
+    // 0.9089) in linear sRGB, as a single value 1 gives it in an emitter.
+    d = parse(scene(spectralRectangle("0.5", "360:1, 830:1")));
+    const Color white = emissionOf(d);
+    EXPECT_NEAR(luminance(white), 1.0f, 1e-3f);
+    d = parse(scene(spectralRectangle("0.5", "1")));
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(emissionOf(d)[c], white[c], 1e-3f) << c;
+    EXPECT_NEAR(emissionOf(d).r, 1.2048f, 1e-4f);
+    EXPECT_NEAR(emissionOf(d).b, 0.9089f, 1e-4f);
+    EXPECT_EQ(diffuseColour(d, 1), Color(0.5f));  // a single value is grey outside emitters
+    // Orange light (590-630 nm) is red and green without blue (clamped at 0);
+    // a reflectance above 1 is clamped to 1, radiance is not.
+    d = parse(scene(spectralRectangle("400:3, 700:3", "590:0, 610:20, 630:0")));
+    const Color orange = emissionOf(d);
+    EXPECT_GT(orange.r, orange.g);
+    EXPECT_GT(orange.g, 0.0f);
+    EXPECT_EQ(orange.b, 0.0f);
+    EXPECT_GT(orange.r, 1.0f);
+    EXPECT_EQ(diffuseColour(d, 1), Color(1.0f));
+
+    EXPECT_THAT(errorOf(scene(spectralRectangle("500:0.5", "1"))),
+                HasSubstr("scene.xml:11: <spectrum name=\"reflectance\">: needs at least two wavelengths"));
+    EXPECT_THAT(errorOf(scene(spectralRectangle("500:0.5, 400:0.5", "1"))),
+                HasSubstr("wavelengths must increase (400 after 500)"));
+    EXPECT_THAT(errorOf(scene(spectralRectangle("500:0.5, 600-0.5", "1"))),
+                HasSubstr("'600-0.5' is not a wavelength:value pair"));
+}
+
+TEST(MitsubaImport, AnEnvmapIsAnEnvironmentLightTurnedAQuarterWithRowsFromPoleToPole) {
+    const fs::path dir = test::scratchDir("mitsuba-envmap");
+    test::writeFile(dir / "sky.exr", "not read while parsing");
+    const auto light = [&](const std::string& transform) {
+        const SceneDesc d = parse(scene(R"(<emitter type="envmap"><string name="filename" value="sky.exr"/>
+          <float name="scale" value="2"/>)" + transform + "</emitter>"), {}, dir / "scene.xml");
+        EXPECT_EQ(d.lights.size(), 1u);
+        return std::get<EnvironmentLight>(d.lights.at(0).light.kind);
+    };
+    EnvironmentLight env = light("");
+    EXPECT_EQ(env.rows, RowLayout::PoleToPole);
+    EXPECT_EQ(env.scale, Color(2.0f));
+    // Mitsuba's image centre looks along +z, strahl's along +x: the world's +z
+    // is the map's +x.
+    const Vec3 zInMap = env.worldToEnvironment * Vec3(0, 0, 1);
+    EXPECT_NEAR(zInMap.x, 1.0f, 1e-6f);
+    EXPECT_NEAR(zInMap.z, 0.0f, 1e-6f);
+    // Turned 90° about +y, Mitsuba's centre looks along +x: strahl's default.
+    env = light(R"(<transform name="to_world"><rotate y="1" angle="90"/></transform>)");
+    const Vec3 xInMap = env.worldToEnvironment * Vec3(1, 0, 0);
+    EXPECT_NEAR(xInMap.x, 1.0f, 1e-6f);
+    EXPECT_THAT(errorOf(scene(R"(<emitter type="envmap"><string name="filename" value=")" +
+                              (dir / "sky.exr").string() +
+                              R"("/><transform name="to_world"><rotate x="1" angle="90"/></transform></emitter>)")),
+                HasSubstr("a to_world other than a rotation about +y is not supported yet"));
 }
 
 TEST(MitsubaImport, StrahlJsonScenesTakeNoDefines) {

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "strahl/integrator/environment_light.h"
+
 #include <string>
 #include <vector>
 
@@ -175,6 +177,22 @@ TEST(ShadingInput, NegativeEnvironmentScale) {
         parseIn(dir, R"("lights": [{"type": "environment", "file": "sky.hdr", "scale": -2}])");
     });
     EXPECT_EQ(message, (dir / "scene.json").string() + ": /lights/0/scale: must be >= 0, got -2");
+}
+
+TEST(ShadingInput, EnvironmentRowsAreCentredOrFromPoleToPole) {
+    const fs::path dir = test::scratchDir("shading-environment-rows");
+    writeFile(dir / "sky.hdr", kNotAnImage);  // never opened while parsing
+    const auto rowsOf = [&](const std::string& key) {
+        const SceneDesc desc = parseIn(
+            dir, R"("lights": [{"type": "environment", "file": "sky.hdr")" + key + "}]");
+        return std::get<EnvironmentLight>(desc.lights.at(0).light.kind).rows;
+    };
+    EXPECT_EQ(rowsOf(""), RowLayout::Centred);
+    EXPECT_EQ(rowsOf(R"(, "rows": "poles")"), RowLayout::PoleToPole);
+    const std::string message = test::errorMessage([&] { rowsOf(R"(, "rows": "edges")"); });
+    EXPECT_TRUE(contains(message, "/lights/0/rows: ")) << message;
+    EXPECT_TRUE(contains(message, "must be one of")) << message;
+    EXPECT_TRUE(contains(message, "centred")) << message;
 }
 
 // --- spot light ----------------------------------------------------------------

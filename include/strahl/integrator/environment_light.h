@@ -9,6 +9,9 @@
 //   file       an image OpenImageIO reads (EXR, HDR, ...)          required
 //   scale      colour multiplying the image                        1
 //   rotation   degrees about +y, [-360, 360]                       0
+//   rows       "centred": each row's values at its band's centre;  "centred"
+//              "poles": the rows stretched from the zenith to the
+//              nadir, as Mitsuba's envmap reads them (environment_map.h)
 
 #include <array>
 #include <filesystem>
@@ -29,14 +32,18 @@ struct EnvironmentLight {
     std::shared_ptr<const EnvironmentMap> environment;
     Mat3 worldToEnvironment{1.0f};  // rotation (orthonormal) into map space
     Color scale{1.0f};              // multiplies the map
+    RowLayout rows = RowLayout::Centred;
 
     template <typename Reader>
     static EnvironmentLight parse(const Reader& r) {
         const auto& v = r.json();
-        v.requireKeys({"type", "file", "scale", "rotation"});
+        v.requireKeys({"type", "file", "scale", "rotation", "rows"});
         EnvironmentLight l;
         l.file = r.existingFile(v.get("file"), "image file");
         if (auto scale = v.find("scale")) l.scale = scale->color();
+        if (auto rows = v.find("rows"))
+            l.rows = rows->oneOf({"centred", "poles"}) == "poles" ? RowLayout::PoleToPole
+                                                                  : RowLayout::Centred;
         float rotation = 0.0f;
         if (auto value = v.find("rotation")) rotation = value->numberIn(-360.0f, 360.0f, "degrees");
         // World to map space: the inverse of the map's rotation about +y.
@@ -44,10 +51,10 @@ struct EnvironmentLight {
             Mat3(glm::rotate(Mat4(1.0f), glm::radians(-rotation), Vec3(0.0f, 1.0f, 0.0f)));
         return l;
     }
-    // loader(file) returns the map read from the file.
+    // loader(file, rows) returns the map read from the file.
     template <typename Loader>
     void load(const Loader& loader) {
-        environment = loader(file);
+        environment = loader(file, rows);
     }
     void validate(size_t index) const {
         light_detail::checkColor(index, "scale", scale);

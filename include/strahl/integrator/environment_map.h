@@ -15,6 +15,13 @@
 // convention of Blender (where Poly Haven HDRIs are made: centre towards +x,
 // sky up) under the usual z-up to y-up conversion (x, y, z) -> (x, z, -y), and
 // that of three.js. docs/lights.md tabulates it.
+//
+// Where the rows sit (RowLayout): by default each texel is an area and its
+// value sits at its centre, v = (y + 1/2)/h, as in every image texture. Some
+// renderers (Mitsuba's envmap) stretch the rows from pole to pole instead:
+// the top row's values on the zenith, the bottom row's on the nadir,
+// v = y/(h - 1). Columns sit at their centres, u = (x + 1/2)/w, either way, and
+// between values the map is bilinear.
 
 #include <vector>
 
@@ -23,12 +30,15 @@
 
 namespace strahl {
 
+enum class RowLayout { Centred, PoleToPole };
+
 class EnvironmentMap {
 public:
     // width x height linear RGB texels, row-major from the top row. Throws
     // strahl::Error on an empty image, a size mismatch, or a non-finite or
-    // negative texel.
-    EnvironmentMap(int width, int height, std::vector<Color> texels);
+    // negative texel (and for PoleToPole, fewer than two rows).
+    EnvironmentMap(int width, int height, std::vector<Color> texels,
+                   RowLayout rows = RowLayout::Centred);
 
     int width() const { return width_; }
     int height() const { return height_; }
@@ -37,9 +47,11 @@ public:
                        static_cast<size_t>(x)];
     }
 
+    RowLayout rows() const { return rows_; }
+
     // Bilinearly interpolated radiance towards a map-space direction (need not be
-    // unit): texel values sit at texel centres; columns wrap around in phi, rows
-    // clamp at the poles.
+    // unit): texel values sit where the row layout puts them; columns wrap
+    // around in phi, rows clamp at the poles.
     Color lookup(const Vec3& dir) const;
     // A unit map-space direction with density proportional to the luminance of
     // the bilinear radiance averaged over each texel, times solid angle; pdf is
@@ -57,6 +69,7 @@ public:
 private:
     int width_, height_;
     std::vector<Color> texels_;
+    RowLayout rows_;
     Distribution2D distribution_;
 };
 
