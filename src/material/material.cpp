@@ -11,12 +11,20 @@ namespace {
 
 // One texture lookup at sp in the material's mapping. Mesh UVs have v up;
 // OIIO's t runs down the image, hence t = 1 - v.
-Vec4 lookup(TextureHandle texture, const TextureMapping& mapping, const ShadingPoint& sp,
+Vec4 lookup(const TextureRef& texture, const TextureMapping& mapping, const ShadingPoint& sp,
             const TextureSystem& textures) {
     if (mapping.kind == TextureMapping::Kind::Triplanar)
-        return textures.triplanar(texture, sp.p, sp.n, mapping.scale, mapping.sharpness,
-                                  sp.footprint * mapping.scale);
-    return textures.lookup(texture, Vec2(sp.uv.x, 1.0f - sp.uv.y), sp.footprint);
+        return textures.triplanar(texture.handle, sp.p, sp.n, mapping.scale, mapping.sharpness,
+                                  sp.footprint * mapping.scale, texture.sampling);
+    Vec2 st(sp.uv.x, 1.0f - sp.uv.y);
+    float footprint = sp.footprint;
+    if (texture.stTransform != Mat3(1.0f)) {
+        const Mat3& m = texture.stTransform;
+        st = Vec2(m * Vec3(st, 1.0f));
+        // A width scales by the square root of the area ratio.
+        footprint *= std::sqrt(std::abs(m[0][0] * m[1][1] - m[1][0] * m[0][1]));
+    }
+    return textures.lookup(texture.handle, st, footprint, texture.sampling);
 }
 
 }  // namespace
@@ -31,18 +39,18 @@ Color evaluateColor(const TexturedColor& c, const TextureMapping& mapping, const
                     const TextureSystem* textures) {
     if (c.checkerboard) return c.value * c.checkerboard->at(sp.uv);
     if (!c.texture.valid() || !textures) return c.value;
-    return c.value * Color(lookup(c.texture.handle, mapping, sp, *textures));
+    return c.value * Color(lookup(c.texture, mapping, sp, *textures));
 }
 
 float evaluateFloat(const TexturedFloat& f, const TextureMapping& mapping, const ShadingPoint& sp,
                     const TextureSystem* textures) {
     if (!f.texture.valid() || !textures) return f.value;
-    return f.value * lookup(f.texture.handle, mapping, sp, *textures)[f.channel];
+    return f.value * lookup(f.texture, mapping, sp, *textures)[f.channel];
 }
 
 Vec3 lookupNormalMap(const TextureRef& normalMap, const TextureMapping& mapping,
                      const ShadingPoint& sp, const TextureSystem& textures) {
-    return Vec3(lookup(normalMap.handle, mapping, sp, textures));
+    return Vec3(lookup(normalMap, mapping, sp, textures));
 }
 
 Color MaterialPoint::reflectance(const TexturedColor& c) const {

@@ -94,11 +94,11 @@ json parseJsonText(const std::string& text, const std::string& label) {
 
 // --- objects -------------------------------------------------------------------
 
-void JsonValue::requireKeys(std::initializer_list<std::string_view> allowed) const {
+void JsonValue::requireKeys(std::span<const std::string_view> allowed) const {
     if (!value_->is_object()) fail("expected an object, got ", describe());
     for (const auto& item : value_->items()) {
         if (std::find(allowed.begin(), allowed.end(), item.key()) != allowed.end()) continue;
-        fail("unknown key '", item.key(), "' (allowed: ", joinList(std::span(allowed.begin(), allowed.size())), ")");
+        fail("unknown key '", item.key(), "' (allowed: ", joinList(allowed), ")");
     }
 }
 

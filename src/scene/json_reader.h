@@ -60,7 +60,10 @@ public:
     // --- objects -------------------------------------------------------------
     // Requires an object whose keys are all in `allowed`; otherwise throws
     // "unknown key 'x' (allowed: a, b, c)".
-    void requireKeys(std::initializer_list<std::string_view> allowed) const;
+    void requireKeys(std::span<const std::string_view> allowed) const;
+    void requireKeys(std::initializer_list<std::string_view> allowed) const {
+        requireKeys(std::span(allowed.begin(), allowed.size()));
+    }
     bool has(std::string_view key) const;
     JsonValue get(std::string_view key) const;  // throws "missing key 'x'"
     std::optional<JsonValue> find(std::string_view key) const;

@@ -34,19 +34,59 @@ Checkerboard parseCheckerboard(const JsonValue& v) {
     return c;
 }
 
-// A colour given as a number, [r, g, b], {"texture": file, "scale": colour}
-// or {"checkerboard": {...}, "scale": colour}.
+// The keys that say how an image texture is sampled and placed
+// (docs/textures.md): "wrap", "filter", "uv_transform" [[a, b, c], [d, e, f]]
+// mapping the image coordinates (s, t) to (a s + b t + c, d s + e t + f).
+constexpr std::string_view kSamplingKeys[] = {"wrap", "filter", "uv_transform"};
+
+void parseTextureSampling(const JsonValue& v, TextureRef& out) {
+    if (auto wrap = v.find("wrap")) {
+        const std::string w = wrap->oneOf({"repeat", "mirror", "clamp"});
+        out.sampling.wrap = w == "repeat" ? TextureWrap::Repeat
+                            : w == "mirror" ? TextureWrap::Mirror
+                                            : TextureWrap::Clamp;
+    }
+    if (auto filter = v.find("filter")) {
+        const std::string f = filter->oneOf({"footprint", "bilinear", "nearest"});
+        out.sampling.filter = f == "footprint"  ? TextureFilter::Footprint
+                              : f == "bilinear" ? TextureFilter::Bilinear
+                                                : TextureFilter::Nearest;
+    }
+    if (auto transform = v.find("uv_transform")) {
+        if (!transform->raw().is_array() || transform->size() != 2)
+            transform->fail("expected two rows [[a, b, c], [d, e, f]]");
+        for (int row = 0; row < 2; ++row) {
+            const JsonValue r = transform->at(static_cast<size_t>(row));
+            if (!r.raw().is_array() || r.size() != 3) r.fail("expected a row of three numbers");
+            for (int col = 0; col < 3; ++col)
+                out.stTransform[col][row] = r.at(static_cast<size_t>(col)).number();
+        }
+    }
+}
+
+// A texture object's keys: its own, then the sampling keys.
+void requireTextureKeys(const JsonValue& v, std::initializer_list<std::string_view> own) {
+    std::vector<std::string_view> keys(own);
+    keys.insert(keys.end(), std::begin(kSamplingKeys), std::end(kSamplingKeys));
+    v.requireKeys(keys);
+}
+
+// A colour given as a number, [r, g, b], {"texture": file, "scale": colour,
+// sampling keys} or {"checkerboard": {...}, "scale": colour}.
 void parseTexturedColor(const JsonValue& v, const fs::path& folder, TexturedColor& out) {
     if (v.raw().is_object()) {
-        v.requireKeys({"texture", "checkerboard", "scale"});
+        requireTextureKeys(v, {"texture", "checkerboard", "scale"});
         if (auto checker = v.find("checkerboard")) {
             if (v.has("texture")) v.fail("'texture' and 'checkerboard' are exclusive: give one");
+            for (std::string_view key : kSamplingKeys)
+                if (v.has(key)) v.get(key).fail("applies to image textures, not to a checkerboard");
             out.checkerboard = parseCheckerboard(*checker);
             out.value = Color(1.0f);
             if (auto scale = v.find("scale")) out.value = scale->color();
             return;
         }
         out.texture.file = textureFile(v.get("texture"), folder);
+        parseTextureSampling(v, out.texture);
         out.value = Color(1.0f);
         if (auto scale = v.find("scale")) out.value = scale->color();
         return;
@@ -54,12 +94,14 @@ void parseTexturedColor(const JsonValue& v, const fs::path& folder, TexturedColo
     out.value = v.color();
 }
 
-// A scalar in [lo, hi] given as a number or {"texture": file, "channel": "g", "scale": x}.
+// A scalar in [lo, hi] given as a number or {"texture": file, "channel": "g",
+// "scale": x, sampling keys}.
 void parseTexturedFloat(const JsonValue& v, const fs::path& folder, float lo, float hi,
                         TexturedFloat& out) {
     if (v.raw().is_object()) {
-        v.requireKeys({"texture", "channel", "scale"});
+        requireTextureKeys(v, {"texture", "channel", "scale"});
         out.texture.file = textureFile(v.get("texture"), folder);
+        parseTextureSampling(v, out.texture);
         out.value = 1.0f;
         if (auto scale = v.find("scale")) out.value = scale->numberIn(lo, hi);
         if (auto channel = v.find("channel")) {
@@ -149,6 +191,12 @@ MaterialDesc parseMaterial(const JsonValue& m, const fs::path& folder) {
     if (auto twoSided = m.find("two_sided")) mat.twoSidedEmission = twoSided->boolean();
     if (auto normal = m.find("normal_map")) mat.normalMap.file = textureFile(*normal, folder);
     if (auto mapping = m.find("mapping")) mat.mapping = parseMapping(*mapping);
+    if (mat.mapping.kind == TextureMapping::Kind::Triplanar)
+        mat.forEachTexture([&](const TextureRef& texture, TextureEncoding) {
+            if (texture.stTransform != Mat3(1.0f))
+                m.get("mapping").fail("a triplanar mapping has no uv: a texture's uv_transform "
+                                      "does not apply (remove it or map by uv)");
+        });
     return desc;
 }
 

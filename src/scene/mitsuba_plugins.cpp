@@ -258,13 +258,28 @@ private:
         if (t.type == "checkerboard") return checkerboard(t);
         if (t.type != "bitmap")
             unsupported(t, "only bitmap and checkerboard textures are supported (not '" + t.type + "')");
-        allowOnly(t, {"filename", "raw"}, {"filter_type", "wrap_mode", "format"});
-        if (t.property("to_uv")) unsupported(t, "to_uv is not supported yet");
+        allowOnly(t, {"filename", "raw", "filter_type", "wrap_mode", "to_uv"}, {"format"});
         if (boolean(t, "raw", false))
             unsupported(t, "raw (no sRGB decoding of 8-bit images) is not supported yet");
+        // Mitsuba reads a bitmap at the point, without MIP levels: strahl's
+        // bilinear or nearest filter, not its default footprint filter.
+        const std::string filter = text(t, "filter_type", "bilinear");
+        if (filter != "bilinear" && filter != "nearest")
+            fail(t.property("filter_type")->place.text(), ": filter_type must be bilinear or nearest");
         const std::string wrap = text(t, "wrap_mode", "repeat");
-        if (wrap != "repeat") unsupported(t, "wrap_mode '" + wrap + "': only repeat is supported");
-        return json{{"texture", file(t, "texture image")}};
+        if (wrap != "repeat" && wrap != "mirror" && wrap != "clamp")
+            fail(t.property("wrap_mode")->place.text(), ": wrap_mode must be repeat, mirror or clamp");
+        json texture = {{"texture", file(t, "texture image")}, {"filter", filter}, {"wrap", wrap}};
+        // to_uv acts on Mitsuba's uv, which is strahl's image coordinates
+        // (s, t) = (u, 1 - v): its 2D affine part is the uv_transform.
+        if (t.property("to_uv")) {
+            const glm::dmat4 m = transform(t, "to_uv");
+            if (m[0][2] != 0 || m[1][2] != 0 || m[2][0] != 0 || m[2][1] != 0 || m[0][3] != 0 ||
+                m[1][3] != 0 || m[3][3] != 1)
+                unsupported(t, "a to_uv that is not a 2D affine map (it mixes in z) is not supported");
+            texture["uv_transform"] = {{m[0][0], m[1][0], m[3][0]}, {m[0][1], m[1][1], m[3][1]}};
+        }
+        return texture;
     }
 
     // Colours only (a nested texture is refused); to_uv a scale along u and v.

@@ -92,9 +92,13 @@ struct Entry {
     OiioSystem::TextureHandle* handle = nullptr;
     std::string file;  // as the caller spelled it, for messages
     int channels = 0;  // stored channels used, 1 to 4
+    int width = 0, height = 0;  // full resolution, texels
     bool srgb = false;  // decode the colour channels from sRGB
 
     bool grey() const { return channels <= 2; }
+    // Whether stored channel `stored` holds colour (decoded from sRGB) rather
+    // than alpha.
+    bool colourChannel(int stored) const { return grey() ? stored == 0 : stored < 3; }
     // The stored channel of RGBA channel c (0 to 3), or -1 for alpha without
     // an alpha channel.
     int storedChannel(int c) const {
@@ -142,22 +146,119 @@ struct TextureSystem::Impl {
         return entries[texture.index];
     }
 
-    // `count` filtered stored channels from `first` on, into out[0..count-1].
+    // `count` stored channels from `first` on, filtered as `sampling` says
+    // and decoded (colour channels of sRGB images), into out[0..count-1].
     void filter(const Entry& e, int first, int count, const Vec2& st, float footprint,
-                float* out) const {
+                const TextureSampling& sampling, float* out) const {
+        if (sampling.filter == TextureFilter::Footprint) {
+            OIIO::TextureOpt opt = options(first, sampling.wrap);
+            // Isotropic footprint: two MIP levels, bilinear within each.
+            // Bilinear (not OIIO's default bicubic B-spline, which blurs) so a
+            // texel centre at footprint 0 returns the texel.
+            opt.mipmode = OIIO::TextureOpt::MipModeTrilinear;
+            opt.interpmode = OIIO::TextureOpt::InterpBilinear;
+            const float width = clampFootprint(footprint);
+            read(e, opt, wrapToUnit(st, sampling.wrap), width, count, out);
+            decode(e, first, count, out);
+            return;
+        }
+        // Texel space: texel (i, j) covers [i, i + 1) x [j, j + 1), its value
+        // at its centre. The coordinates are first brought near [0, 1] by a
+        // whole number of the wrap's periods, so that indices stay exact.
+        const float x = reduce(st.x, sampling.wrap) * static_cast<float>(e.width);
+        const float y = reduce(st.y, sampling.wrap) * static_cast<float>(e.height);
+        if (sampling.filter == TextureFilter::Nearest) {
+            texel(e, first, count, wrapIndex(std::floor(x), e.width, sampling.wrap),
+                  wrapIndex(std::floor(y), e.height, sampling.wrap), out);
+            return;
+        }
+        const float x0 = std::floor(x - 0.5f), y0 = std::floor(y - 0.5f);
+        const float fx = x - 0.5f - x0, fy = y - 0.5f - y0;
+        const int i0 = wrapIndex(x0, e.width, sampling.wrap), i1 = wrapIndex(x0 + 1.0f, e.width, sampling.wrap);
+        const int j0 = wrapIndex(y0, e.height, sampling.wrap), j1 = wrapIndex(y0 + 1.0f, e.height, sampling.wrap);
+        float v00[4], v10[4], v01[4], v11[4];
+        texel(e, first, count, i0, j0, v00);
+        texel(e, first, count, i1, j0, v10);
+        texel(e, first, count, i0, j1, v01);
+        texel(e, first, count, i1, j1, v11);
+        for (int c = 0; c < count; ++c)
+            out[c] = (1.0f - fy) * ((1.0f - fx) * v00[c] + fx * v10[c]) +
+                     fy * ((1.0f - fx) * v01[c] + fx * v11[c]);
+    }
+
+private:
+    static OIIO::TextureOpt options(int first, TextureWrap wrap) {
         OIIO::TextureOpt opt;
         opt.firstchannel = first;
-        opt.swrap = OIIO::TextureOpt::WrapPeriodic;
-        opt.twrap = OIIO::TextureOpt::WrapPeriodic;
-        // Isotropic footprint: two MIP levels, bilinear within each. Bilinear
-        // (not OIIO's default bicubic B-spline, which blurs) so a texel centre
-        // at footprint 0 returns the texel.
-        opt.mipmode = OIIO::TextureOpt::MipModeTrilinear;
-        opt.interpmode = OIIO::TextureOpt::InterpBilinear;
-        const float width = clampFootprint(footprint);
-        if (!system->texture(e.handle, perthread(), opt, wrapPeriodic(st.x), wrapPeriodic(st.y),
-                             width, 0.0f, 0.0f, width, count, out))
+        // Repeat is done by wrapToUnit (exact for huge coordinates); OIIO
+        // wraps what is left, which is nothing.
+        const auto mode = wrap == TextureWrap::Mirror  ? OIIO::TextureOpt::WrapMirror
+                          : wrap == TextureWrap::Clamp ? OIIO::TextureOpt::WrapClamp
+                                                       : OIIO::TextureOpt::WrapPeriodic;
+        opt.swrap = opt.twrap = mode;
+        return opt;
+    }
+
+    static float finiteOrZero(float x) { return std::isfinite(x) ? x : 0.0f; }
+
+    // x moved by whole periods of the wrap (1 for repeat, 2 for mirror) into
+    // [0, period), or clamped to [-1, 2] (clamp: beyond, nothing changes).
+    static float reduce(float x, TextureWrap wrap) {
+        x = finiteOrZero(x);
+        switch (wrap) {
+            case TextureWrap::Mirror: return x - 2.0f * std::floor(0.5f * x);
+            case TextureWrap::Clamp: return std::clamp(x, -1.0f, 2.0f);
+            case TextureWrap::Repeat:
+            default: return wrapPeriodic(x);
+        }
+    }
+
+    static Vec2 wrapToUnit(const Vec2& st, TextureWrap wrap) {
+        if (wrap == TextureWrap::Repeat) return Vec2(wrapPeriodic(st.x), wrapPeriodic(st.y));
+        // OIIO mirrors or clamps; only non-finite and huge values are tamed
+        // here (2^20 images wide is beyond any texture's reach).
+        const auto tame = [](float x) { return std::clamp(finiteOrZero(x), -1048576.0f, 1048576.0f); };
+        return Vec2(tame(st.x), tame(st.y));
+    }
+
+    // The texel index along an axis of n texels for texel-space coordinate
+    // floor value `i` (Mitsuba's wrap modes): repeat is i mod n; mirror
+    // reflects every other copy (..., 1, 0 | 0, 1, ..., n-1 | n-1, ...);
+    // clamp takes the edge texel.
+    static int wrapIndex(float i, int n, TextureWrap wrap) {
+        const int k = static_cast<int>(i);  // small: see reduce()
+        int index = k;
+        if (wrap == TextureWrap::Mirror) {
+            const int m = ((k % (2 * n)) + 2 * n) % (2 * n);  // [0, 2n)
+            index = m < n ? m : 2 * n - 1 - m;
+        } else if (wrap == TextureWrap::Repeat) {
+            index = ((k % n) + n) % n;
+        }
+        return std::clamp(index, 0, n - 1);  // clamp, and float rounding at the edges
+    }
+
+    // Texel (i, j) of the full-resolution image, decoded.
+    void texel(const Entry& e, int first, int count, int i, int j, float* out) const {
+        OIIO::TextureOpt opt = options(first, TextureWrap::Repeat);
+        opt.mipmode = OIIO::TextureOpt::MipModeNoMIP;
+        opt.interpmode = OIIO::TextureOpt::InterpClosest;
+        const Vec2 centre((static_cast<float>(i) + 0.5f) / static_cast<float>(e.width),
+                          (static_cast<float>(j) + 0.5f) / static_cast<float>(e.height));
+        read(e, opt, centre, 0.0f, count, out);
+        decode(e, first, count, out);
+    }
+
+    void read(const Entry& e, OIIO::TextureOpt& opt, const Vec2& st, float width, int count,
+              float* out) const {
+        if (!system->texture(e.handle, perthread(), opt, st.x, st.y, width, 0.0f, 0.0f, width,
+                             count, out))
             fail(e.file, ": texture lookup failed: ", oneLine(system->geterror()));
+    }
+
+    static void decode(const Entry& e, int first, int count, float* values) {
+        if (!e.srgb) return;
+        for (int c = 0; c < count; ++c)
+            if (e.colourChannel(first + c)) values[c] = srgbToLinear(values[c]);
     }
 };
 
@@ -217,6 +318,8 @@ TextureHandle TextureSystem::add(const fs::path& file, TextureEncoding encoding)
     entry.handle = handle;
     entry.file = name;
     entry.channels = std::min(spec.nchannels, 4);
+    entry.width = spec.width;
+    entry.height = spec.height;
     entry.srgb = encoding == TextureEncoding::Color && isSrgbFormat(spec.format);
 
     const auto index = static_cast<uint32_t>(impl_->entries.size());
@@ -225,41 +328,38 @@ TextureHandle TextureSystem::add(const fs::path& file, TextureEncoding encoding)
     return TextureHandle{index};
 }
 
-Vec4 TextureSystem::lookup(TextureHandle texture, const Vec2& st, float footprint) const {
+Vec4 TextureSystem::lookup(TextureHandle texture, const Vec2& st, float footprint,
+                           const TextureSampling& sampling) const {
     const Entry& e = impl_->entry(texture);
     float v[4] = {};
-    impl_->filter(e, 0, e.channels, st, footprint, v);
-    Vec4 result = e.grey() ? Vec4(v[0], v[0], v[0], e.channels == 2 ? v[1] : 1.0f)
-                           : Vec4(v[0], v[1], v[2], e.channels == 4 ? v[3] : 1.0f);
-    if (e.srgb)
-        for (int c = 0; c < 3; ++c) result[c] = srgbToLinear(result[c]);
-    return result;
+    impl_->filter(e, 0, e.channels, st, footprint, sampling, v);
+    return e.grey() ? Vec4(v[0], v[0], v[0], e.channels == 2 ? v[1] : 1.0f)
+                    : Vec4(v[0], v[1], v[2], e.channels == 4 ? v[3] : 1.0f);
 }
 
-Color TextureSystem::lookupColor(TextureHandle texture, const Vec2& st, float footprint) const {
+Color TextureSystem::lookupColor(TextureHandle texture, const Vec2& st, float footprint,
+                                 const TextureSampling& sampling) const {
     const Entry& e = impl_->entry(texture);
     float v[3] = {};
-    impl_->filter(e, 0, e.grey() ? 1 : 3, st, footprint, v);
-    Color result = e.grey() ? Color(v[0]) : Color(v[0], v[1], v[2]);
-    if (e.srgb)
-        for (int c = 0; c < 3; ++c) result[c] = srgbToLinear(result[c]);
-    return result;
+    impl_->filter(e, 0, e.grey() ? 1 : 3, st, footprint, sampling, v);
+    return e.grey() ? Color(v[0]) : Color(v[0], v[1], v[2]);
 }
 
 float TextureSystem::lookupChannel(TextureHandle texture, int channel, const Vec2& st,
-                                   float footprint) const {
+                                   float footprint, const TextureSampling& sampling) const {
     const Entry& e = impl_->entry(texture);
     if (channel < 0 || channel > 3)
         fail(e.file, ": texture channel ", channel, " requested; channels are 0 to 3 (RGBA)");
     const int stored = e.storedChannel(channel);
     if (stored < 0) return 1.0f;  // alpha of an image without one
     float value = 0.0f;
-    impl_->filter(e, stored, 1, st, footprint, &value);
-    return e.srgb && channel < 3 ? srgbToLinear(value) : value;
+    impl_->filter(e, stored, 1, st, footprint, sampling, &value);
+    return value;
 }
 
 Vec4 TextureSystem::triplanar(TextureHandle texture, const Vec3& p, const Vec3& n, float scale,
-                              float sharpness, float footprint) const {
+                              float sharpness, float footprint,
+                              const TextureSampling& sampling) const {
     // |n|^sharpness relative to the largest component: scale-invariant in n,
     // and the dominant weight is 1 however large the exponent.
     const Vec3 a = glm::abs(n);
@@ -277,9 +377,9 @@ Vec4 TextureSystem::triplanar(TextureHandle texture, const Vec3& p, const Vec3& 
 
     const Vec3 q = p * scale;
     Vec4 result(0.0f);
-    if (w.x > 0.0f) result += w.x * lookup(texture, Vec2(q.y, q.z), footprint);
-    if (w.y > 0.0f) result += w.y * lookup(texture, Vec2(q.x, q.z), footprint);
-    if (w.z > 0.0f) result += w.z * lookup(texture, Vec2(q.x, q.y), footprint);
+    if (w.x > 0.0f) result += w.x * lookup(texture, Vec2(q.y, q.z), footprint, sampling);
+    if (w.y > 0.0f) result += w.y * lookup(texture, Vec2(q.x, q.z), footprint, sampling);
+    if (w.z > 0.0f) result += w.z * lookup(texture, Vec2(q.x, q.y), footprint, sampling);
     return result;
 }
 

@@ -259,6 +259,31 @@ TEST(MitsubaImport, SpectraBecomeRgbAsInMitsubasRgbVariants) {
                 HasSubstr("'600-0.5' is not a wavelength:value pair"));
 }
 
+TEST(MitsubaImport, BitmapsAreReadAtThePointWithTheirWrapModeAndToUv) {
+    const fs::path dir = test::scratchDir("mitsuba-bitmap");
+    test::writeFile(dir / "carrot.png", "not read while parsing");
+    const auto bitmap = [&](const std::string& params) {
+        const SceneDesc d = parse(scene(R"(<shape type="cube"><bsdf type="diffuse">
+          <texture name="reflectance" type="bitmap"><string name="filename" value="carrot.png"/>)" +
+                                        params + "</texture></bsdf></shape>"),
+                                  {}, dir / "scene.xml");
+        return std::get<DiffuseMaterial>(d.materials.at(1).material.kind).color.texture;
+    };
+    TextureRef t = bitmap("");
+    EXPECT_EQ(t.sampling.filter, TextureFilter::Bilinear);  // Mitsuba has no MIP levels
+    EXPECT_EQ(t.sampling.wrap, TextureWrap::Repeat);
+    EXPECT_EQ(t.stTransform, Mat3(1.0f));
+    t = bitmap(R"(<string name="filter_type" value="nearest"/><string name="wrap_mode" value="clamp"/>
+      <transform name="to_uv"><scale value="2"/><translate value="-0.5, -0.5, 0"/></transform>)");
+    EXPECT_EQ(t.sampling.filter, TextureFilter::Nearest);
+    EXPECT_EQ(t.sampling.wrap, TextureWrap::Clamp);
+    const Vec3 corner = t.stTransform * Vec3(1.0f, 1.0f, 1.0f);  // scaled first, then moved
+    EXPECT_FLOAT_EQ(corner.x, 1.5f);
+    EXPECT_FLOAT_EQ(corner.y, 1.5f);
+    EXPECT_THAT(test::errorMessage([&] { bitmap(R"(<string name="wrap_mode" value="tile"/>)"); }),
+                HasSubstr("wrap_mode must be repeat, mirror or clamp"));
+}
+
 TEST(MitsubaImport, AnEnvmapIsAnEnvironmentLightTurnedAQuarterWithRowsFromPoleToPole) {
     const fs::path dir = test::scratchDir("mitsuba-envmap");
     test::writeFile(dir / "sky.exr", "not read while parsing");

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "strahl/integrator/environment_light.h"
+#include "strahl/material/diffuse.h"
 
 #include <string>
 #include <vector>
@@ -130,6 +131,35 @@ TEST(ShadingInput, MissingTextureFileNamesThePointer) {
     EXPECT_EQ(message, (dir / "scene.json").string() +
                            ": /materials/0/color/texture: no such texture file 'wood.png' "
                            "(looked at " + (dir / "wood.png").string() + ")");
+}
+
+TEST(ShadingInput, TextureSamplingKeys) {
+    const fs::path dir = test::scratchDir("shading-texture-sampling");
+    writeFile(dir / "wood.png", kNotAnImage);  // not read while parsing
+    const SceneDesc desc = parseIn(dir, R"("materials": [{"name": "m", "color": {"texture": "wood.png",
+        "wrap": "mirror", "filter": "nearest", "uv_transform": [[2, 0, -0.5], [0.5, 3, 0.25]]}}])");
+    const auto& diffuse = std::get<DiffuseMaterial>(desc.materials.at(0).material.kind);
+    const TextureRef& t = diffuse.color.texture;
+    EXPECT_EQ(t.sampling.wrap, TextureWrap::Mirror);
+    EXPECT_EQ(t.sampling.filter, TextureFilter::Nearest);
+    // (s', t') = (2 s - 0.5, 0.5 s + 3 t + 0.25).
+    const Vec3 mapped = t.stTransform * Vec3(1.0f, 2.0f, 1.0f);
+    EXPECT_FLOAT_EQ(mapped.x, 1.5f);
+    EXPECT_FLOAT_EQ(mapped.y, 6.75f);
+    EXPECT_FLOAT_EQ(mapped.z, 1.0f);
+
+    const auto error = [&](const std::string& material) {
+        return test::errorMessage([&] { parseIn(dir, R"("materials": [)" + material + "]"); });
+    };
+    EXPECT_TRUE(contains(error(R"({"name": "m", "color": {"texture": "wood.png", "wrap": "tile"}})"),
+                         "/materials/0/color/wrap: must be one of repeat, mirror, clamp"));
+    EXPECT_TRUE(contains(error(R"({"name": "m", "color": {"texture": "wood.png", "uv_transform": [[1, 0], [0, 1]]}})"),
+                         "/materials/0/color/uv_transform/0: expected a row of three numbers"));
+    EXPECT_TRUE(contains(error(R"({"name": "m", "mapping": "triplanar",
+        "color": {"texture": "wood.png", "uv_transform": [[2, 0, 0], [0, 2, 0]]}})"),
+                         "/materials/0/mapping: a triplanar mapping has no uv"));
+    EXPECT_TRUE(contains(error(R"({"name": "m", "color": {"checkerboard": {}, "filter": "nearest"}})"),
+                         "/materials/0/color/filter: applies to image textures, not to a checkerboard"));
 }
 
 TEST(ShadingInput, TextureThatIsNotAnImageFailsWhenTheWorldIsBuilt) {

@@ -129,6 +129,67 @@ TEST(TextureSystem, WrapsPeriodically) {
     }
 }
 
+// The bilinear and nearest filters (Mitsuba's bitmap): the full-resolution
+// image at the point, whatever the footprint, in each wrap mode.
+TEST(TextureSystem, NearestReadsTheTexelUnderThePointInEachWrapMode) {
+    const fs::path dir = test::scratchDir("texture-nearest");
+    TextureSystem textures;
+    const TextureHandle exr = textures.add(writeExr(dir), TextureEncoding::Data);
+    const auto at = [&](float s, TextureWrap wrap) {
+        return textures.lookup(exr, Vec2(s, centre(0, 1).y), 0.5f, {wrap, TextureFilter::Nearest});
+    };
+    for (int x = 0; x < 4; ++x) {
+        // Anywhere inside the texel, not only at its centre; the footprint
+        // (0.5, half the image) is ignored.
+        EXPECT_EQ(at((float(x) + 0.1f) / 4.0f, TextureWrap::Repeat), Vec4(exrTexel(x, 1), 1.0f));
+        EXPECT_EQ(at((float(x) + 0.9f) / 4.0f, TextureWrap::Clamp), Vec4(exrTexel(x, 1), 1.0f));
+    }
+    // Beyond the right edge: texel 1 of the next copy, of the mirrored copy
+    // (its third from the left: 4 - 1 - 1 = 2), or the edge texel.
+    const float s = (4.0f + 1.5f) / 4.0f;
+    EXPECT_EQ(at(s, TextureWrap::Repeat), Vec4(exrTexel(1, 1), 1.0f));
+    EXPECT_EQ(at(s, TextureWrap::Mirror), Vec4(exrTexel(2, 1), 1.0f));
+    EXPECT_EQ(at(s, TextureWrap::Clamp), Vec4(exrTexel(3, 1), 1.0f));
+    // Left of the left edge: mirrored texel 0 is texel 0 itself.
+    EXPECT_EQ(at(-0.1f, TextureWrap::Mirror), Vec4(exrTexel(0, 1), 1.0f));
+    EXPECT_EQ(at(-0.1f, TextureWrap::Repeat), Vec4(exrTexel(3, 1), 1.0f));
+    EXPECT_EQ(at(-0.1f, TextureWrap::Clamp), Vec4(exrTexel(0, 1), 1.0f));
+}
+
+TEST(TextureSystem, BilinearInterpolatesTexelCentresInEachWrapMode) {
+    const fs::path dir = test::scratchDir("texture-exact-bilinear");
+    TextureSystem textures;
+    const TextureHandle exr = textures.add(writeExr(dir), TextureEncoding::Data);
+    const auto at = [&](float s, TextureWrap wrap) {
+        return textures.lookup(exr, Vec2(s, centre(0, 2).y), 0.5f, {wrap, TextureFilter::Bilinear});
+    };
+    const auto mix = [](int a, int b) { return Vec4(0.5f * (exrTexel(a, 2) + exrTexel(b, 2)), 1.0f); };
+    expectNear(at(0.5f, TextureWrap::Repeat), mix(1, 2), 1e-5f);
+    // At s = 0: between the last and the first column, the first twice
+    // (mirrored), or the first (clamped).
+    expectNear(at(0.0f, TextureWrap::Repeat), mix(3, 0), 1e-5f);
+    expectNear(at(0.0f, TextureWrap::Mirror), mix(0, 0), 1e-5f);
+    expectNear(at(0.0f, TextureWrap::Clamp), mix(0, 0), 1e-5f);
+    expectNear(at(1.0f + 0.5f / 4.0f, TextureWrap::Mirror), mix(3, 3), 1e-5f);
+    expectNear(at(10.0f + 0.5f, TextureWrap::Clamp), mix(3, 3), 1e-5f);
+    expectNear(at(10.0f + 0.5f, TextureWrap::Repeat), mix(1, 2), 1e-4f);
+}
+
+TEST(TextureSystem, BilinearDecodesSrgbBeforeInterpolating) {
+    // Black and white texels: halfway between them is linear 0.5, as in a
+    // renderer that converts the image to linear first (Mitsuba); the
+    // footprint filter interpolates the codes and decodes 0.5 (0.214).
+    const fs::path dir = test::scratchDir("texture-srgb-bilinear");
+    const fs::path file = dir / "bw.png";
+    writeImage(file, 2, 1, 1, OIIO::TypeDesc::UINT8, std::vector<uint8_t>{0, 255});
+    TextureSystem textures;
+    const TextureHandle bw = textures.add(file, TextureEncoding::Color);
+    const Vec2 between(0.5f, 0.5f);
+    EXPECT_NEAR(textures.lookup(bw, between, 0.0f, {TextureWrap::Clamp, TextureFilter::Bilinear}).r,
+                0.5f, 1e-6f);
+    EXPECT_NEAR(textures.lookup(bw, between, 0.0f).r, srgbToLinear(0.5), 1e-3f);
+}
+
 TEST(TextureSystem, LargeFootprintGivesTheImageMean) {
     const fs::path dir = test::scratchDir("texture-mean");
     TextureSystem textures;

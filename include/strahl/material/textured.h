@@ -13,10 +13,15 @@
 namespace strahl {
 
 // A texture a material uses: the file the scene names (set when the scene is
-// parsed) and its handle in the texture system (set when the world is built).
+// parsed) and its handle in the texture system (set when the world is built),
+// with how it is sampled and where it is placed.
 struct TextureRef {
     std::filesystem::path file;
     TextureHandle handle;
+    TextureSampling sampling;  // wrap and filter (texture_system.h)
+    // An affine map of the image coordinates (s, t) = (u, 1 − v) applied
+    // before the lookup (uv mapping only): (s', t', 1) = stTransform (s, t, 1).
+    Mat3 stTransform{1.0f};
 
     bool valid() const { return handle.valid(); }
 };

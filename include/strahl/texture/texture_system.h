@@ -13,7 +13,15 @@
 //
 // Texture coordinates st follow OpenImageIO: s runs right and t runs DOWN the
 // image ((0, 0) is the top-left corner of the top-left texel). Mesh UVs with v
-// up must be passed as (u, 1 - v). Lookups wrap periodically.
+// up must be passed as (u, 1 - v).
+//
+// Sampling (TextureSampling): outside [0, 1] the image repeats (default), is
+// mirrored, or its edge texels extend. The default filter follows the ray's
+// footprint through MIP levels (trilinear; sRGB decoded after filtering, the
+// approximation docs/textures.md measures). "bilinear" and "nearest" read the
+// full-resolution image at the point, without prefiltering, as Mitsuba's
+// bitmap does: texel values decoded first, then interpolated between texel
+// centres, exactly.
 
 #include <cstddef>
 #include <cstdint>
@@ -32,6 +40,14 @@ namespace strahl {
 #pragma GCC diagnostic ignored "-Wshadow"
 enum class TextureEncoding { Color, Data };
 #pragma GCC diagnostic pop
+
+enum class TextureWrap { Repeat, Mirror, Clamp };
+enum class TextureFilter { Footprint, Bilinear, Nearest };
+struct TextureSampling {
+    TextureWrap wrap = TextureWrap::Repeat;
+    TextureFilter filter = TextureFilter::Footprint;
+    bool operator==(const TextureSampling&) const = default;
+};
 
 struct TextureHandle {
     uint32_t index = 0xFFFFFFFFu;
@@ -57,18 +73,21 @@ public:
     // Filtered RGBA lookup at st (s right, t down; see above). footprint is
     // the width of the ray's footprint in st units: 0 is the finest level
     // (bilinear between texel centres, so a texel centre gives the texel's
-    // exact value); 1 or more covers the whole image and gives its mean.
-    // Thread-safe; throws strahl::Error for an invalid handle or if
-    // OpenImageIO fails to read the file.
-    Vec4 lookup(TextureHandle texture, const Vec2& st, float footprint) const;
+    // exact value); 1 or more covers the whole image and gives its mean. The
+    // bilinear and nearest filters ignore it. Thread-safe; throws
+    // strahl::Error for an invalid handle or if OpenImageIO fails to read the
+    // file.
+    Vec4 lookup(TextureHandle texture, const Vec2& st, float footprint,
+                const TextureSampling& sampling = {}) const;
 
     // The RGB of lookup(), from one lookup of at most three channels.
-    Color lookupColor(TextureHandle texture, const Vec2& st, float footprint) const;
+    Color lookupColor(TextureHandle texture, const Vec2& st, float footprint,
+                      const TextureSampling& sampling = {}) const;
 
     // Channel `channel` (0 R, 1 G, 2 B, 3 A) of lookup(), from a one-channel
     // lookup: e.g. roughness from the G of a glTF metallic-roughness map.
-    float lookupChannel(TextureHandle texture, int channel, const Vec2& st,
-                        float footprint) const;
+    float lookupChannel(TextureHandle texture, int channel, const Vec2& st, float footprint,
+                        const TextureSampling& sampling = {}) const;
 
     // Triplanar projection for surfaces without UVs (implicit surfaces): the
     // lookups at st = (p.y, p.z), (p.x, p.z) and (p.x, p.y), each times scale,
@@ -77,7 +96,7 @@ public:
     // The projections are not mirrored per side: on faces looking down -x,
     // -y or -z the image appears mirrored.
     Vec4 triplanar(TextureHandle texture, const Vec3& p, const Vec3& n, float scale,
-                   float sharpness, float footprint) const;
+                   float sharpness, float footprint, const TextureSampling& sampling = {}) const;
 
     size_t textureCount() const;
 
