@@ -64,7 +64,9 @@ Color emittedTowards(const World& world, const ShadingContext& ctx, uint32_t are
 
 Color estimateLight(const World& world, const ShadingContext& ctx, const Light& light,
                     const Vec2& u, float selectPdf, LightSampling sampling, ShadingStats& stats) {
-    const std::optional<LightLiSample> ls = sampleLi(light, ctx.lightContext(), u);
+    LightSampleContext lightContext = ctx.lightContext();
+    lightContext.textures = world.textures.get();
+    const std::optional<LightLiSample> ls = sampleLi(light, lightContext, u);
     if (!ls || !(ls->pdf > 0.0f) || maxComponent(ls->L) <= 0.0f) return Color(0.0f);
     const Color f = ctx.fCos(ls->wi);
     if (maxComponent(f) <= 0.0f) return Color(0.0f);

@@ -66,7 +66,7 @@ void World::prepareLights() {
                      " emissive triangles (counting every instance); use fewer emissive"
                      " instances or a textured emission, which is not light-sampled");
             areaLightOfPrim_[offset + t] = static_cast<uint32_t>(all.size());
-            all.push_back(light);
+            all.emplace_back(light);
         }
     };
     for (size_t g = 0; g < shapes.size(); ++g)

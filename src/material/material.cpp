@@ -16,8 +16,13 @@ Vec4 lookup(const TextureRef& texture, const TextureMapping& mapping, const Shad
     if (mapping.kind == TextureMapping::Kind::Triplanar)
         return textures.triplanar(texture.handle, sp.p, sp.n, mapping.scale, mapping.sharpness,
                                   sp.footprint * mapping.scale, texture.sampling);
-    Vec2 st(sp.uv.x, 1.0f - sp.uv.y);
-    float footprint = sp.footprint;
+    return lookupTexture(texture, Vec2(sp.uv.x, 1.0f - sp.uv.y), sp.footprint, textures);
+}
+
+}  // namespace
+
+Vec4 lookupTexture(const TextureRef& texture, Vec2 st, float footprint,
+                   const TextureSystem& textures) {
     if (texture.stTransform != Mat3(1.0f)) {
         const Mat3& m = texture.stTransform;
         st = Vec2(m * Vec3(st, 1.0f));
@@ -26,8 +31,6 @@ Vec4 lookup(const TextureRef& texture, const TextureMapping& mapping, const Shad
     }
     return textures.lookup(texture.handle, st, footprint, texture.sampling);
 }
-
-}  // namespace
 
 Color Checkerboard::at(Vec2 uv) const {
     const float s = scale.x * uv.x, t = scale.y * (1.0f - uv.y);

@@ -1,6 +1,7 @@
 #include "light_builder.h"
 
 #include "image_reader.h"
+#include "material_builder.h"
 #include "strahl/core/error.h"
 
 namespace strahl::scene_detail {
@@ -29,17 +30,32 @@ std::shared_ptr<const EnvironmentMap> loadEnvironment(const std::filesystem::pat
     }
 }
 
+// What a light kind's load() reads its files through.
+class LightResources {
+public:
+    LightResources(const LightDesc& desc, const SceneDesc& scene, World& world)
+        : desc_(desc), scene_(scene), world_(world) {}
+    std::shared_ptr<const EnvironmentMap> environmentMap(const std::filesystem::path& file,
+                                                         RowLayout rows) const {
+        return loadEnvironment(file, rows, desc_, scene_);
+    }
+    TextureHandle colorTexture(const std::filesystem::path& file) const {
+        return addTexture(world_, file, TextureEncoding::Color,
+                          scene_.file.filename().string() + ": " + desc_.where);
+    }
+
+private:
+    const LightDesc& desc_;
+    const SceneDesc& scene_;
+    World& world_;
+};
+
 }  // namespace
 
-Light buildLight(const LightDesc& desc, const SceneDesc& scene) {
+Light buildLight(const LightDesc& desc, const SceneDesc& scene, World& world) {
     Light light = desc.light;
-    std::visit(
-        [&](auto& kind) {
-            kind.load([&](const std::filesystem::path& file, RowLayout rows) {
-                return loadEnvironment(file, rows, desc, scene);
-            });
-        },
-        light.kind);
+    const LightResources resources(desc, scene, world);
+    std::visit([&](auto& kind) { kind.load(resources); }, light.kind);
     return light;
 }
 

@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "strahl/core/closed_family.h"
+#include "texture_parser.h"
 
 namespace strahl::scene_detail {
 
@@ -26,6 +27,7 @@ public:
     fs::path existingFile(const JsonValue& v, std::string_view noun) const {
         return resolveExistingFile(folder_, v, noun);
     }
+    TextureRef imageTexture(const JsonValue& v) const { return parseImageTexture(v, folder_); }
 
 private:
     const JsonValue& light_;

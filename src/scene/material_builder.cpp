@@ -8,8 +8,6 @@ namespace strahl::scene_detail {
 
 namespace fs = std::filesystem;
 
-namespace {
-
 TextureHandle addTexture(World& world, const fs::path& file, TextureEncoding encoding,
                          const std::string& where) {
     if (file.empty()) return {};
@@ -20,6 +18,8 @@ TextureHandle addTexture(World& world, const fs::path& file, TextureEncoding enc
         fail(where, ": ", e.what());
     }
 }
+
+namespace {
 
 // Registers `file` (if any) and points `ref` at it.
 void bindTexture(World& world, const fs::path& file, TextureEncoding encoding,

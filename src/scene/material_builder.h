@@ -13,6 +13,12 @@
 
 namespace strahl::scene_detail {
 
+// Registers an image with the world's texture system (made on the first
+// one); an empty file is no texture. An unreadable file fails as
+// "<where>: <file>: <reason>".
+TextureHandle addTexture(World& world, const std::filesystem::path& file, TextureEncoding encoding,
+                         const std::string& where);
+
 // Errors (an unreadable texture) name the scene file and the material's JSON
 // pointer, or for a mesh file's material its name "<shape>/<material>".
 Material buildMaterial(const MaterialDesc& desc, const SceneDesc& scene, World& world);

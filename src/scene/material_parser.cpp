@@ -6,6 +6,7 @@
 #include <span>
 
 #include "strahl/core/closed_family.h"
+#include "texture_parser.h"
 
 namespace strahl::scene_detail {
 
@@ -34,43 +35,6 @@ Checkerboard parseCheckerboard(const JsonValue& v) {
     return c;
 }
 
-// The keys that say how an image texture is sampled and placed
-// (docs/textures.md): "wrap", "filter", "uv_transform" [[a, b, c], [d, e, f]]
-// mapping the image coordinates (s, t) to (a s + b t + c, d s + e t + f).
-constexpr std::string_view kSamplingKeys[] = {"wrap", "filter", "uv_transform"};
-
-void parseTextureSampling(const JsonValue& v, TextureRef& out) {
-    if (auto wrap = v.find("wrap")) {
-        const std::string w = wrap->oneOf({"repeat", "mirror", "clamp"});
-        out.sampling.wrap = w == "repeat" ? TextureWrap::Repeat
-                            : w == "mirror" ? TextureWrap::Mirror
-                                            : TextureWrap::Clamp;
-    }
-    if (auto filter = v.find("filter")) {
-        const std::string f = filter->oneOf({"footprint", "bilinear", "nearest"});
-        out.sampling.filter = f == "footprint"  ? TextureFilter::Footprint
-                              : f == "bilinear" ? TextureFilter::Bilinear
-                                                : TextureFilter::Nearest;
-    }
-    if (auto transform = v.find("uv_transform")) {
-        if (!transform->raw().is_array() || transform->size() != 2)
-            transform->fail("expected two rows [[a, b, c], [d, e, f]]");
-        for (int row = 0; row < 2; ++row) {
-            const JsonValue r = transform->at(static_cast<size_t>(row));
-            if (!r.raw().is_array() || r.size() != 3) r.fail("expected a row of three numbers");
-            for (int col = 0; col < 3; ++col)
-                out.stTransform[col][row] = r.at(static_cast<size_t>(col)).number();
-        }
-    }
-}
-
-// A texture object's keys: its own, then the sampling keys.
-void requireTextureKeys(const JsonValue& v, std::initializer_list<std::string_view> own) {
-    std::vector<std::string_view> keys(own);
-    keys.insert(keys.end(), std::begin(kSamplingKeys), std::end(kSamplingKeys));
-    v.requireKeys(keys);
-}
-
 // A colour given as a number, [r, g, b], {"texture": file, "scale": colour,
 // sampling keys} or {"checkerboard": {...}, "scale": colour}.
 void parseTexturedColor(const JsonValue& v, const fs::path& folder, TexturedColor& out) {
@@ -78,7 +42,7 @@ void parseTexturedColor(const JsonValue& v, const fs::path& folder, TexturedColo
         requireTextureKeys(v, {"texture", "checkerboard", "scale"});
         if (auto checker = v.find("checkerboard")) {
             if (v.has("texture")) v.fail("'texture' and 'checkerboard' are exclusive: give one");
-            for (std::string_view key : kSamplingKeys)
+            for (std::string_view key : kTextureSamplingKeys)
                 if (v.has(key)) v.get(key).fail("applies to image textures, not to a checkerboard");
             out.checkerboard = parseCheckerboard(*checker);
             out.value = Color(1.0f);

@@ -453,6 +453,8 @@ private:
             allowOnly(e, {"radiance"});
             if (doc_.contains("background")) unsupported(e, "a second constant emitter");
             doc_["background"] = color(e, "radiance", 1.0);
+        } else if (e.type == "spot") {
+            spot(e, toWorld);
         } else if (e.type == "envmap") {
             allowOnly(e, {"filename", "scale", "to_world"}, {"mis_compensation"});
             // Mitsuba's lat-long map: u = atan2(x, -z) / 2π, so its image
@@ -470,6 +472,38 @@ private:
         } else {
             unsupported(e, "this emitter is not supported yet (docs/mitsuba.md lists those that are)");
         }
+    }
+
+    // Mitsuba's spot: at to_world's origin, along its +z, its image's up
+    // along +y; full intensity inside beam_width, then linear in the angle to
+    // zero at cutoff_angle; an optional bitmap projected over the cone.
+    void spot(const Object& e, const glm::dmat4& m) {
+        allowOnly(e, {"intensity", "cutoff_angle", "beam_width", "texture", "to_world"});
+        const glm::dvec3 x(m[0]), y(m[1]), z(m[2]);
+        const double length = glm::length(z);
+        if (!(length > 0.0) || std::abs(glm::length(x) - length) > 1e-6 * length ||
+            std::abs(glm::length(y) - length) > 1e-6 * length ||
+            glm::length(glm::cross(x, y) - length * z) > 1e-6 * length * length)
+            unsupported(e, "a to_world that is not a rotation (times a uniform scale) is not supported");
+        const double cutoff = number(e, "cutoff_angle", 20.0);
+        const double beam = number(e, "beam_width", cutoff * 3.0 / 4.0);
+        if (!(cutoff > 0.0 && cutoff <= 180.0 && beam >= 0.0 && beam <= cutoff))
+            unsupported(e, "needs 0 < beam_width <= cutoff_angle <= 180 degrees");
+        json light = {{"type", "spot"},
+                      {"position", vec3(glm::dvec3(m[3]))},
+                      {"direction", vec3(glm::normalize(z))},
+                      {"intensity", color(e, "intensity", 1.0)},
+                      {"cone_angle", cutoff},
+                      {"falloff_start", beam},
+                      {"falloff", "linear"}};
+        for (const Child& c : e.children) {
+            if (c.object->tag != "texture" || c.name != "texture")
+                unsupported(*c.object, "not supported inside a spot emitter");
+            if (c.object->type != "bitmap") unsupported(*c.object, "a spot projects a bitmap only");
+            light["texture"] = texture(*c.object);
+            light["up"] = vec3(glm::normalize(y));
+        }
+        lights_.push_back(light);
     }
 
     // The angle in degrees of a to_world that turns about +y only (strahl's

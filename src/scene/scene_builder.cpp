@@ -291,7 +291,7 @@ BuiltScene buildScene(const SceneDesc& desc, const BuildOptions& options, BuildT
     }
     placeInstances(desc, flat, world);
 
-    for (const LightDesc& l : desc.lights) world.lights.push_back(scene_detail::buildLight(l, desc));
+    for (const LightDesc& l : desc.lights) world.lights.push_back(scene_detail::buildLight(l, desc, world));
     if (timings) timings->loadSeconds = secondsSince(loadStart);
     const size_t loadedBytes = residentBytes();
     if (options.memoryLimitBytes != 0 && loadedBytes > options.memoryLimitBytes)

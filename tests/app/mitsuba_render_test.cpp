@@ -60,9 +60,9 @@ const MitsubaCase kCases[] = {
     {"participating_media", "surf_area_light_volpath", "<bsdf type=\"plastic\">: this BSDF is not supported yet"},
     {"projector", "projector_constant_direct", "<emitter type=\"projector\">: this emitter is not supported yet"},
     {"projector", "projector_textured_direct", "<emitter type=\"projector\">: this emitter is not supported yet"},
-    {"spot_light", "spot_direct", "<emitter type=\"spot\" id=\"light_1\">: this emitter is not supported yet"},
+    {"spot_light", "spot_direct", ""},
     {"texture_interp", "texture_interp_direct", ""},
-    {"various_emitters", "various_emitters_ptracer", "<emitter type=\"spot\" id=\"light_3\">: this emitter is not supported yet"},
+    {"various_emitters", "various_emitters_ptracer", "<emitter type=\"projector\" id=\"light_5\">: this emitter is not supported yet"},
 };
 
 fs::path scenes() { return test::sharedData() / "mitsuba-tests/tests/scenes"; }

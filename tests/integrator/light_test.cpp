@@ -183,19 +183,35 @@ TEST(SpotLight, SmoothstepFalloffBetweenTheCones) {
     EXPECT_FALSE(sampleLi(light, LightSampleContext{Vec3(0, 1, 0), Vec3(0)}, Vec2(0)));
 }
 
+TEST(SpotLight, LinearFalloffIsLinearInTheAngle) {
+    // Mitsuba's spot: full inside 0.3 rad, zero beyond 0.5 rad, linear in the
+    // angle between.
+    SpotLight light = spotLight(Vec3(0, 0, 0), 8.0f, std::cos(0.3f), std::cos(0.5f));
+    light.shape = SpotLight::Falloff::LinearAngle;
+    EXPECT_NEAR(light.falloff(std::cos(0.2f)), 1.0f, 1e-6f);
+    EXPECT_NEAR(light.falloff(std::cos(0.4f)), 0.5f, 1e-5f);
+    EXPECT_NEAR(light.falloff(std::cos(0.45f)), 0.25f, 1e-5f);
+    EXPECT_EQ(light.falloff(std::cos(0.5f)), 0.0f);
+    EXPECT_EQ(light.falloff(-1.0f), 0.0f);
+}
+
 TEST(SpotLight, PowerIsTheIntegralOfTheFalloff) {
-    const SpotLight light = spotLight(Vec3(0, 0, 0), 3.0f, 0.9f, 0.6f);
-    // Phi = I 2 pi integral of falloff(cos) dcos, by the midpoint rule.
-    double integral = 0.0;
-    const int steps = 20000;
-    for (int i = 0; i < steps; ++i) {
-        const double cosA = -1.0 + 2.0 * (i + 0.5) / steps;
-        const auto s = sampleLi(
-            light, LightSampleContext{Vec3(std::sqrt(1.0 - cosA * cosA), -cosA, 0), Vec3(0)},
-            Vec2(0));
-        if (s) integral += s->L.r / 3.0 * (2.0 / steps);
+    for (const auto shape : {SpotLight::Falloff::Smooth, SpotLight::Falloff::LinearAngle}) {
+        SpotLight light = spotLight(Vec3(0, 0, 0), 3.0f, 0.9f, 0.6f);
+        light.shape = shape;
+        // Phi = I 2 pi integral of falloff(cos) dcos, by the midpoint rule.
+        double integral = 0.0;
+        const int steps = 20000;
+        for (int i = 0; i < steps; ++i) {
+            const double cosA = -1.0 + 2.0 * (i + 0.5) / steps;
+            const auto s = sampleLi(
+                light, LightSampleContext{Vec3(std::sqrt(1.0 - cosA * cosA), -cosA, 0), Vec3(0)},
+                Vec2(0));
+            if (s) integral += s->L.r / 3.0 * (2.0 / steps);
+        }
+        EXPECT_NEAR(lightPower(light, unitBox()), 3.0 * 2.0 * kPi * integral, 1e-3)
+            << (shape == SpotLight::Falloff::Smooth ? "smooth" : "linear");
     }
-    EXPECT_NEAR(lightPower(light, unitBox()), 3.0 * 2.0 * kPi * integral, 1e-3);
 }
 
 TEST(DirectionalLight, DeltaGivesTheIrradiance) {

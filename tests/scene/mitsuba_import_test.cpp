@@ -12,6 +12,7 @@
 #include <string>
 
 #include "strahl/integrator/environment_light.h"
+#include "strahl/integrator/spot_light.h"
 #include "strahl/material/diffuse.h"
 #include "strahl/scene/scene_desc.h"
 #include "strahl/scene/scene_document.h"
@@ -282,6 +283,30 @@ TEST(MitsubaImport, BitmapsAreReadAtThePointWithTheirWrapModeAndToUv) {
     EXPECT_FLOAT_EQ(corner.y, 1.5f);
     EXPECT_THAT(test::errorMessage([&] { bitmap(R"(<string name="wrap_mode" value="tile"/>)"); }),
                 HasSubstr("wrap_mode must be repeat, mirror or clamp"));
+}
+
+TEST(MitsubaImport, ASpotFallsOffLinearlyInTheAngleAndProjectsItsBitmap) {
+    const fs::path dir = test::scratchDir("mitsuba-spot");
+    test::writeFile(dir / "slide.png", "not read while parsing");
+    const SceneDesc d = parse(scene(R"(<emitter type="spot">
+      <rgb name="intensity" value="5"/><float name="cutoff_angle" value="20"/>
+      <transform name="to_world"><lookat origin="1, 2, 3" target="1, 2, 4" up="0, 1, 0"/></transform>
+      <texture name="texture" type="bitmap"><string name="filename" value="slide.png"/></texture>
+    </emitter>)"), {}, dir / "scene.xml");
+    const auto& spot = std::get<SpotLight>(d.lights.at(0).light.kind);
+    EXPECT_EQ(spot.position, Vec3(1, 2, 3));
+    EXPECT_EQ(spot.direction, Vec3(0, 0, 1));
+    EXPECT_EQ(spot.intensity, Color(5.0f));
+    EXPECT_EQ(spot.shape, SpotLight::Falloff::LinearAngle);
+    EXPECT_NEAR(spot.cosTotalWidth, std::cos(glm::radians(20.0f)), 1e-6f);
+    EXPECT_NEAR(spot.cosFalloffStart, std::cos(glm::radians(15.0f)), 1e-6f);  // 3/4 of the cutoff
+    // Mitsuba's image frame: s along its local +x (up × axis), t along +y.
+    ASSERT_TRUE(spot.image);
+    EXPECT_NEAR(spot.image->x.x, 1.0f, 1e-6f);
+    EXPECT_NEAR(spot.image->y.y, 1.0f, 1e-6f);
+    EXPECT_EQ(spot.image->texture.sampling.filter, TextureFilter::Bilinear);
+    EXPECT_THAT(errorOf(scene(R"(<emitter type="spot"><transform name="to_world"><scale x="2"/></transform></emitter>)")),
+                HasSubstr("a to_world that is not a rotation (times a uniform scale) is not supported"));
 }
 
 TEST(MitsubaImport, AnEnvmapIsAnEnvironmentLightTurnedAQuarterWithRowsFromPoleToPole) {

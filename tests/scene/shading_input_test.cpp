@@ -5,15 +5,16 @@
 // the world is built, and name the material or light and the file; a missing
 // texture in an OBJ's .mtl is only a warning.
 
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
-#include "strahl/integrator/environment_light.h"
-#include "strahl/material/diffuse.h"
-
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "strahl/core/error.h"
+#include "strahl/integrator/environment_light.h"
+#include "strahl/material/diffuse.h"
 #include "strahl/meshio/mesh_file.h"
 #include "strahl/scene/scene_builder.h"
 #include "strahl/scene/scene_desc.h"
@@ -237,6 +238,56 @@ TEST(ShadingInput, SpotFalloffStartBeyondTheCone) {
     EXPECT_EQ(lightError("{" + kSpot + R"(, "falloff_start": 40})"),
               "scene.json: /lights/0/falloff_start: must not exceed cone_angle (30 degrees), "
               "got 40");
+}
+
+// A spot projecting an image (Mitsuba's spot): 2 x 2 texels, red, green /
+// blue, white, spread over the cone's base square; the image's s runs along
+// up × axis and its t along axis × (up × axis).
+TEST(ShadingInput, SpotProjectsItsImageOverTheCone) {
+    const fs::path dir = test::scratchDir("shading-spot-image");
+    const fs::path image = dir / "quad.exr";
+    {
+        std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(image.string());
+        ASSERT_TRUE(out);
+        const float texels[] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1};
+        ASSERT_TRUE(out->open(image.string(), OIIO::ImageSpec(2, 2, 3, OIIO::TypeDesc::FLOAT)));
+        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, texels));
+        ASSERT_TRUE(out->close());
+    }
+    // Along -y from (0, 1, 0); up +z, so s runs along z × -y = +x and t along
+    // -y × x = +z. The cone's half-angle is 45 degrees: the image spans
+    // [-1, 1]² on the plane y = 0.
+    const SceneDesc desc = parseIn(dir, R"("lights": [{"type": "spot", "position": [0, 1, 0],
+        "direction": [0, -1, 0], "cone_angle": 45, "falloff_start": 45, "up": [0, 0, 1],
+        "intensity": 2, "texture": {"texture": "quad.exr", "filter": "nearest"}}])");
+    const World world = buildWorld(desc, BuildOptions{});
+    ASSERT_TRUE(world.textures);
+    const Light& spot = world.lights.at(0);
+    const auto at = [&](float x, float z) {
+        LightSampleContext ctx{Vec3(x, 0, z), Vec3(0, 1, 0), world.textures.get()};
+        const auto s = sampleLi(spot, ctx, Vec2(0.5f));
+        return s ? Color(s->L * (1.0f + x * x + z * z) / 2.0f) : Color(0.0f);  // / (I / r²)
+    };
+    EXPECT_EQ(at(-0.5f, -0.5f), Color(1, 0, 0));  // s < 1/2, t < 1/2: top left
+    EXPECT_EQ(at(0.5f, -0.5f), Color(0, 1, 0));
+    EXPECT_EQ(at(-0.5f, 0.5f), Color(0, 0, 1));
+    EXPECT_EQ(at(0.5f, 0.5f), Color(1, 1, 1));
+
+    EXPECT_TRUE(contains(lightError(R"({"type": "spot", "position": [0, 1, 0], "direction": [0, -1, 0],
+        "up": [0, 0, 1], "texture": {"texture": "quad.exr"}})"),
+                         "/lights/0/texture/texture: no such texture file"));
+    const std::string along = test::errorMessage([&] {
+        parseIn(dir, R"("lights": [{"type": "spot", "position": [0, 1, 0], "direction": [0, -1, 0],
+            "up": [0, 1, 0], "texture": {"texture": "quad.exr"}}])");
+    });
+    EXPECT_TRUE(contains(along, "/lights/0/up: the image's up ([0, 1, 0]) is along the spot's axis")) << along;
+    const std::string wide = test::errorMessage([&] {
+        parseIn(dir, R"("lights": [{"type": "spot", "position": [0, 1, 0], "direction": [0, -1, 0],
+            "cone_angle": 100, "texture": {"texture": "quad.exr"}}])");
+    });
+    EXPECT_TRUE(contains(wide, "/lights/0/texture: a projected image needs cone_angle < 90 degrees")) << wide;
+    EXPECT_TRUE(contains(lightError("{" + kSpot + R"(, "up": [0, 0, 1]})"),
+                         "/lights/0/up: only a spot with a 'texture' has an up side"));
 }
 
 TEST(ShadingInput, SpotConeAngleZero) {

@@ -51,10 +51,10 @@ struct EnvironmentLight {
             Mat3(glm::rotate(Mat4(1.0f), glm::radians(-rotation), Vec3(0.0f, 1.0f, 0.0f)));
         return l;
     }
-    // loader(file, rows) returns the map read from the file.
+    // loader.environmentMap(file, rows) returns the map read from the file.
     template <typename Loader>
     void load(const Loader& loader) {
-        environment = loader(file, rows);
+        environment = loader.environmentMap(file, rows);
     }
     void validate(size_t index) const {
         light_detail::checkColor(index, "scale", scale);

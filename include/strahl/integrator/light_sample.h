@@ -9,12 +9,16 @@
 
 namespace strahl {
 
+class TextureSystem;
+
 // Where the light is sampled from: a surface point with its geometric normal
 // (zero for a point not on a surface). Only the sky uses n: it samples the
 // hemisphere n points into, so n should face the side being shaded.
+// `textures` is the world's, for lights that project an image (spot).
 struct LightSampleContext {
     Vec3 p{0.0f};
     Vec3 n{0.0f};
+    const TextureSystem* textures = nullptr;
 };
 
 struct LightLiSample {

@@ -68,6 +68,11 @@ struct ShadingPoint {
     float footprint = 0.0f;  // ray footprint width in uv units (texture filtering)
 };
 
+// `texture` at image coordinates st = (u, 1 − v), before its stTransform,
+// through its sampling; footprint in st units (scaled by the transform).
+Vec4 lookupTexture(const TextureRef& texture, Vec2 st, float footprint,
+                   const TextureSystem& textures);
+
 // Texture lookups of one material at one point. `textures` may be null when
 // the material has no textures.
 Color evaluateColor(const TexturedColor& c, const TextureMapping& mapping,
