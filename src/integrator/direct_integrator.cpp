@@ -1,7 +1,7 @@
 // Direct lighting: emission plus one estimate per light of the light it sends
 // directly to the hit, reflected by the material's BSDF,
 //   L(p, wo) = Le + sum_lights f(wo, wi) L_i |cos| / pdf  *  V(p, light),
-// with one shadow ray per light. Delta lights (point, spot, directional) are
+// with one shadow ray per light. Delta lights (point, spot, projector, directional) are
 // exact and noise-free; area and environment lights take one light sample per
 // camera sample (no BSDF sampling, no indirect light: use `path` for that).
 

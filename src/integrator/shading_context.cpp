@@ -56,8 +56,14 @@ ShadingContext makeShadingContext(const World& world, const SurfaceHit& hit, flo
 Color emittedTowards(const World& world, const ShadingContext& ctx, uint32_t areaLight) {
     const Material& material = *ctx.material;
     if (!material.emits()) return Color(0.0f);
-    if (areaLight != kInvalidId) return triangleLe(world.lightSet.lights()[areaLight], ctx.wo);
-    // Textured emission or a user shape: the front is the surface's own Ng.
+    if (areaLight != kInvalidId) {
+        // The light's own front (its winding), as light sampling sees it.
+        const Color front = triangleLe(world.lightSet.lights()[areaLight], ctx.wo);
+        if (material.hasUniformEmission() || maxComponent(front) <= 0.0f) return front;
+        return emittedRadiance(material, ctx.point, world.textures.get());
+    }
+    // A user shape or an emission mapped triplanar: the front is the
+    // surface's own Ng.
     if (!material.twoSidedEmission && glm::dot(ctx.si->Ng, ctx.wo) <= 0.0f) return Color(0.0f);
     return emittedRadiance(material, ctx.point, world.textures.get());
 }

@@ -1,9 +1,10 @@
 // World::prepareLights: gathers the explicit lights, the background sky and
-// the area lights. Every triangle whose material has uniform (untextured)
-// emission becomes one triangle light in world space, once per placement (top
-// level, and once per instance of a prototype), so next-event estimation can
-// sample it; the (instID, geomID, primID) -> light map lets the path tracer
-// find the light a BSDF-sampled ray hit, for the MIS weight.
+// the area lights. Every triangle whose material has a uniform emission, or
+// one textured through the uvs, becomes one triangle light in world space,
+// once per placement (top level, and once per instance of a prototype), so
+// next-event estimation can sample it; the (instID, geomID, primID) -> light
+// map lets the path tracer find the light a BSDF-sampled ray hit, for the MIS
+// weight. (An emission mapped triplanar is found by BSDF sampling only.)
 
 #include "strahl/core/error.h"
 #include "strahl/core/transform.h"
@@ -18,9 +19,27 @@ uint64_t emitterKey(uint32_t instID, uint32_t geomID) {
 }
 
 // Area lights past this count would make the light table itself the memory
-// problem (a Light is 112 bytes: 2^24 of them take 1.75 GiB); a scene that needs more should use
-// textured emission or fewer emissive instances.
+// problem (a Light is about 100 bytes: 2^24 of them take 1.6 GiB); a scene
+// that needs more should use fewer emissive instances.
 constexpr size_t kMaxAreaLights = size_t(1) << 24;
+
+// Whether next-event estimation samples the material's emission: uniform,
+// or read through the uvs (a texture or a checkerboard).
+bool lightSampled(const Material& m) {
+    return m.emits() && (m.hasUniformEmission() || m.mapping.kind == TextureMapping::Kind::UV);
+}
+
+// The mean of a textured emission's pattern over its image (for the light's
+// power, which only weighs the light's choice): the texture's top MIP level,
+// or the checkerboard's two colours; 1 for a uniform emission.
+float patternMean(const Material& m, const TextureSystem* textures) {
+    const TexturedColor& e = m.emission;
+    if (e.checkerboard)
+        return 0.5f * (light_detail::mean(e.checkerboard->color0) + light_detail::mean(e.checkerboard->color1));
+    if (e.texture.valid() && textures)
+        return light_detail::mean(Color(textures->lookup(e.texture.handle, Vec2(0.5f), 1.0f)));
+    return 1.0f;
+}
 
 }  // namespace
 
@@ -38,7 +57,7 @@ void World::prepareLights() {
                               const Mat4* toWorld) {
         if (!shape.isMesh()) return;
         bool emits = false;
-        for (uint32_t m : shape.materialOfSlot) emits |= materials[m].hasUniformEmission();
+        for (uint32_t m : shape.materialOfSlot) emits |= lightSampled(materials[m]);
         if (!emits) return;
         const TriangleMesh& mesh = shape.mesh;
         const auto offset = static_cast<uint32_t>(areaLightOfPrim_.size());
@@ -47,7 +66,7 @@ void World::prepareLights() {
         for (size_t t = 0; t < mesh.triangleCount(); ++t) {
             const uint32_t slot = mesh.faceMaterials.empty() ? 0u : mesh.faceMaterials[t];
             const Material& material = materials[shape.materialOfSlot[slot]];
-            if (!material.hasUniformEmission()) continue;
+            if (!lightSampled(material)) continue;
             TriangleLight light;
             Vec3 p[3];
             for (int k = 0; k < 3; ++k) {
@@ -61,10 +80,19 @@ void World::prepareLights() {
             if (glm::length(glm::cross(p[1] - p[0], p[2] - p[0])) <= 0.0f) continue;
             light.radiance = material.emission.value;
             light.twoSided = material.twoSidedEmission;
+            if (!material.hasUniformEmission()) {
+                light.textured = &material;
+                if (!mesh.uvs.empty()) {  // else the barycentric uvs (0,0), (1,0), (0,1)
+                    light.uv0 = mesh.uvs[mesh.indices[3 * t]];
+                    light.uv1 = mesh.uvs[mesh.indices[3 * t + 1]];
+                    light.uv2 = mesh.uvs[mesh.indices[3 * t + 2]];
+                }
+                light.textureMean = patternMean(material, textures.get());
+            }
             if (all.size() >= kMaxAreaLights)
                 fail("the scene has more than ", kMaxAreaLights,
                      " emissive triangles (counting every instance); use fewer emissive"
-                     " instances or a textured emission, which is not light-sampled");
+                     " instances");
             areaLightOfPrim_[offset + t] = static_cast<uint32_t>(all.size());
             all.emplace_back(light);
         }

@@ -43,6 +43,9 @@ public:
         return addTexture(world_, file, TextureEncoding::Color,
                           scene_.file.filename().string() + ": " + desc_.where);
     }
+    glm::ivec2 textureResolution(TextureHandle texture) const {
+        return world_.textures->resolution(texture);
+    }
 
 private:
     const LightDesc& desc_;

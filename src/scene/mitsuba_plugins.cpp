@@ -6,6 +6,7 @@
 #include <map>
 #include <set>
 
+#include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "spectrum_to_rgb.h"
@@ -455,6 +456,8 @@ private:
             doc_["background"] = color(e, "radiance", 1.0);
         } else if (e.type == "spot") {
             spot(e, toWorld);
+        } else if (e.type == "projector") {
+            projector(e, toWorld);
         } else if (e.type == "envmap") {
             allowOnly(e, {"filename", "scale", "to_world"}, {"mis_compensation"});
             // Mitsuba's lat-long map: u = atan2(x, -z) / 2π, so its image
@@ -477,14 +480,21 @@ private:
     // Mitsuba's spot: at to_world's origin, along its +z, its image's up
     // along +y; full intensity inside beam_width, then linear in the angle to
     // zero at cutoff_angle; an optional bitmap projected over the cone.
-    void spot(const Object& e, const glm::dmat4& m) {
-        allowOnly(e, {"intensity", "cutoff_angle", "beam_width", "texture", "to_world"});
+    // A light's to_world must turn (and may scale uniformly) its local frame:
+    // +z the light's axis, +y the up side of its image.
+    static void requireRotation(const Object& e, const glm::dmat4& m) {
         const glm::dvec3 x(m[0]), y(m[1]), z(m[2]);
         const double length = glm::length(z);
         if (!(length > 0.0) || std::abs(glm::length(x) - length) > 1e-6 * length ||
             std::abs(glm::length(y) - length) > 1e-6 * length ||
             glm::length(glm::cross(x, y) - length * z) > 1e-6 * length * length)
             unsupported(e, "a to_world that is not a rotation (times a uniform scale) is not supported");
+    }
+
+    void spot(const Object& e, const glm::dmat4& m) {
+        allowOnly(e, {"intensity", "cutoff_angle", "beam_width", "texture", "to_world"});
+        requireRotation(e, m);
+        const glm::dvec3 y(m[1]), z(m[2]);
         const double cutoff = number(e, "cutoff_angle", 20.0);
         const double beam = number(e, "beam_width", cutoff * 3.0 / 4.0);
         if (!(cutoff > 0.0 && cutoff <= 180.0 && beam >= 0.0 && beam <= cutoff))
@@ -502,6 +512,36 @@ private:
             if (c.object->type != "bitmap") unsupported(*c.object, "a spot projects a bitmap only");
             light["texture"] = texture(*c.object);
             light["up"] = vec3(glm::normalize(y));
+        }
+        lights_.push_back(light);
+    }
+
+    // Mitsuba's projector: the reciprocal of its perspective camera at
+    // to_world (+z forward, +y up), with the camera's fov conventions; the
+    // irradiance texture's aspect shapes the frustum. Mitsuba's code gives a
+    // plane one unit away π × scale × irradiance (docs/mitsuba.md).
+    void projector(const Object& e, const glm::dmat4& m) {
+        allowOnly(e, {"irradiance", "scale", "fov", "fov_axis", "focal_length", "to_world"});
+        requireRotation(e, m);
+        const auto [fov, axis] = fieldOfView(e);
+        const double scale = glm::pi<double>() * number(e, "scale", 1.0);
+        json light = {{"type", "projector"},
+                      {"position", vec3(glm::dvec3(m[3]))},
+                      {"direction", vec3(glm::normalize(glm::dvec3(m[2])))},
+                      {"up", vec3(glm::normalize(glm::dvec3(m[1])))},
+                      {"fov", fov},
+                      {"fov_axis", axis}};
+        const json irradiance = color(e, "irradiance", 1.0);
+        if (irradiance.is_object()) {
+            if (!irradiance.contains("texture"))
+                unsupported(e, "a projector projects a bitmap or a constant irradiance only");
+            light["texture"] = irradiance;
+            light["irradiance"] = scale;
+        } else if (irradiance.is_array()) {
+            light["irradiance"] = {scale * irradiance[0].get<double>(), scale * irradiance[1].get<double>(),
+                                   scale * irradiance[2].get<double>()};
+        } else {
+            light["irradiance"] = scale * irradiance.get<double>();
         }
         lights_.push_back(light);
     }
@@ -569,15 +609,15 @@ private:
         doc_["camera"] = camera;
     }
 
-    // Mitsuba's fov is along fov_axis (default x); strahl's is vertical.
-    static double verticalFov(const Object& s, double aspect) {
+    // A camera's (or projector's) field of view in degrees and the axis it
+    // spans: fov along fov_axis (default x), or without fov a focal_length
+    // (default 50mm) in mm on 35 mm film (36 x 24 mm), along the diagonal.
+    static std::pair<double, std::string> fieldOfView(const Object& s) {
         double fov = 0.0;
         std::string axis = text(s, "fov_axis", "x");
         if (s.property("fov")) {
             fov = number(s, "fov", 0.0);
         } else {
-            // A focal length in mm on 35 mm film (36 x 24 mm): along the
-            // film's diagonal.
             const std::string given = text(s, "focal_length", "50mm");
             const std::string digits = given.substr(0, given.find("mm"));
             const double f = numbers(digits, s.place, "focal_length").at(0);
@@ -585,14 +625,22 @@ private:
             axis = "diagonal";
         }
         if (!(fov > 0.0 && fov < 180.0)) unsupported(s, "fov must be between 0 and 180 degrees");
+        static const std::set<std::string> axes = {"x", "y", "diagonal", "smaller", "larger"};
+        if (!axes.count(axis))
+            fail(s.property("fov_axis")->place.text(), ": fov_axis must be x, y, diagonal, smaller or larger");
+        return {fov, axis};
+    }
+
+    // Mitsuba's fov is along fov_axis (default x); strahl's is vertical.
+    static double verticalFov(const Object& s, double aspect) {
+        const auto [fov, axis] = fieldOfView(s);
         const double t = std::tan(glm::radians(fov) / 2.0);
         double ty = 0.0;  // tan of half the vertical fov
         if (axis == "x") ty = t / aspect;
         else if (axis == "y") ty = t;
         else if (axis == "diagonal") ty = t / std::sqrt(aspect * aspect + 1.0);
         else if (axis == "smaller") ty = aspect >= 1.0 ? t : t / aspect;
-        else if (axis == "larger") ty = aspect >= 1.0 ? t / aspect : t;
-        else fail(s.property("fov_axis")->place.text(), ": fov_axis must be x, y, diagonal, smaller or larger");
+        else ty = aspect >= 1.0 ? t / aspect : t;  // larger
         return glm::degrees(2.0 * std::atan(ty));
     }
 

@@ -383,6 +383,11 @@ Vec4 TextureSystem::triplanar(TextureHandle texture, const Vec3& p, const Vec3& 
     return result;
 }
 
+glm::ivec2 TextureSystem::resolution(TextureHandle texture) const {
+    const Entry& e = impl_->entry(texture);
+    return glm::ivec2(e.width, e.height);
+}
+
 size_t TextureSystem::textureCount() const { return impl_->entries.size(); }
 
 }  // namespace strahl

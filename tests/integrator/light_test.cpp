@@ -120,8 +120,8 @@ Bounds3 unitBox() {
 
 TEST(LightKinds, SceneFileNamesFollowTheVariantOrder) {
     const auto names = kindNames<LightKind>();
-    const std::vector<std::string_view> expected = {"point",       "spot", "directional", "sun",
-                                                    "environment", "sky"};
+    const std::vector<std::string_view> expected = {"point", "spot",        "projector", "directional",
+                                                    "sun",   "environment", "sky"};
     EXPECT_EQ(std::vector<std::string_view>(names.begin(), names.end()), expected);
     // "sun" is a directional light; triangles are made by the renderer, not named.
     const auto sunIsDirectional = withKindNamed<LightKind>(
@@ -212,6 +212,71 @@ TEST(SpotLight, PowerIsTheIntegralOfTheFalloff) {
         EXPECT_NEAR(lightPower(light, unitBox()), 3.0 * 2.0 * kPi * integral, 1e-3)
             << (shape == SpotLight::Falloff::Smooth ? "smooth" : "linear");
     }
+}
+
+// An untextured projector along -y from (0, 2, 0): a square frustum of
+// half-angle 30 degrees (fov 60 along x of a square image).
+ProjectorLight projector(float irradiance) {
+    ProjectorLight l;
+    l.position = Vec3(0, 2, 0);
+    l.axis = Vec3(0, -1, 0);
+    l.up = Vec3(0, 0, -1);
+    l.right = glm::cross(l.axis, l.up);
+    l.irradiance = Color(irradiance);
+    l.fovDegrees = 60.0f;
+    l.setFrustum(1.0f);
+    return l;
+}
+
+TEST(ProjectorLight, APlaneFacingItReceivesTheIrradianceUpToTheFrustumsEdge) {
+    const ProjectorLight light = projector(3.0f);
+    EXPECT_TRUE(light.isDelta());
+    // On the floor (2 units away), E = irradiance / 2² everywhere inside the
+    // frustum: the 1 / cos³ of the intensity cancels cos / dist².
+    const float half = 2.0f * std::tan(glm::radians(30.0f));
+    for (const Vec2 xz : {Vec2(0.0f), Vec2(0.9f * half, 0.0f), Vec2(-0.5f * half, 0.95f * half)}) {
+        const LightSampleContext ctx{Vec3(xz.x, 0, xz.y), Vec3(0, 1, 0)};
+        EXPECT_NEAR(estimateIrradiance(light, ctx, 1, 1), 3.0 / 4.0, 1e-5) << xz.x << ", " << xz.y;
+    }
+    EXPECT_FALSE(sampleLi(light, LightSampleContext{Vec3(1.05f * half, 0, 0), Vec3(0, 1, 0)}, Vec2(0)));
+    EXPECT_FALSE(sampleLi(light, LightSampleContext{Vec3(0, 3, 0), Vec3(0, -1, 0)}, Vec2(0)));
+}
+
+TEST(ProjectorLight, FovAxisAndAspectShapeTheFrustum) {
+    ProjectorLight light = projector(1.0f);
+    const float t = std::tan(glm::radians(30.0f));
+    light.setFrustum(2.0f);  // a 2:1 image, fov along x
+    EXPECT_FLOAT_EQ(light.tanX, t);
+    EXPECT_FLOAT_EQ(light.tanY, t / 2.0f);
+    light.fovAxis = ProjectorLight::FovAxis::Y;
+    light.setFrustum(2.0f);
+    EXPECT_FLOAT_EQ(light.tanY, t);
+    EXPECT_FLOAT_EQ(light.tanX, 2.0f * t);
+    light.fovAxis = ProjectorLight::FovAxis::Diagonal;
+    light.setFrustum(2.0f);
+    EXPECT_NEAR(std::hypot(light.tanX, light.tanY), t, 1e-6f);
+    EXPECT_FLOAT_EQ(light.tanX, 2.0f * light.tanY);
+    light.fovAxis = ProjectorLight::FovAxis::Smaller;
+    light.setFrustum(2.0f);
+    EXPECT_FLOAT_EQ(light.tanY, t);
+}
+
+TEST(ProjectorLight, PowerIsTheIntegralOfTheIntensity) {
+    const ProjectorLight light = projector(3.0f);
+    // Phi = integral of I over the sphere, by the midpoint rule in (theta, phi)
+    // over the cap the frustum lies in.
+    double integral = 0.0;
+    const int n = 600;
+    const double maxTheta = glm::radians(60.0);
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const double theta = (i + 0.5) / n * maxTheta, phi = (j + 0.5) / n * 2.0 * kPi;
+            const Vec3 d(float(std::sin(theta) * std::cos(phi)), float(-std::cos(theta)),
+                         float(std::sin(theta) * std::sin(phi)));
+            integral += light.intensityTowards(d, nullptr).r * std::sin(theta);
+        }
+    integral *= (maxTheta / n) * (2.0 * kPi / n);
+    EXPECT_NEAR(lightPower(light, unitBox()) / integral, 1.0, 2e-3);
 }
 
 TEST(DirectionalLight, DeltaGivesTheIrradiance) {

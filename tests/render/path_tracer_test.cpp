@@ -132,8 +132,13 @@ TEST(PathTracer, LambertPlaneUnderAPointLightMatchesTheClosedForm) {
 }
 
 // A small box room lit by a quad light in the ceiling: what a BSDF-sampled ray
-// finds and what light sampling finds are both material.
-std::string roomScene(int spp) {
+// finds and what light sampling finds are both material. The lamp's emission
+// is uniform, or a pattern through its uvs (light-sampled all the same).
+const std::string kUniformLamp = "8";
+const std::string kPatternedLamp =
+    R"({ "checkerboard": { "color0": 1, "color1": 0.1, "scale": 2 }, "scale": 8 })";
+
+std::string roomScene(int spp, const std::string& lamp = kUniformLamp) {
     return R"({
       "camera": { "eye": [0, 1, 3.2], "look_at": [0, 1, 0], "fov": 45 },
       "film": { "width": 16, "height": 16 },
@@ -142,7 +147,7 @@ std::string roomScene(int spp) {
         { "name": "white", "color": 0.7 },
         { "name": "red", "color": [0.7, 0.1, 0.1] },
         { "name": "shiny", "type": "conductor", "metal": "silver", "roughness": 0.35 },
-        { "name": "lamp", "type": "emissive", "emission": 8 } ],
+        { "name": "lamp", "type": "emissive", "emission": )" + lamp + R"( } ],
       "shapes": [
         { "type": "mesh", "material": "white",
           "positions": [[-1, 0, -1], [1, 0, -1], [1, 0, 1], [-1, 0, 1],
@@ -156,6 +161,7 @@ std::string roomScene(int spp) {
           "indices": [0, 1, 2, 0, 2, 3] },
         { "type": "mesh", "material": "lamp",
           "positions": [[-0.3, 1.99, -0.3], [0.3, 1.99, -0.3], [0.3, 1.99, 0.3], [-0.3, 1.99, 0.3]],
+          "uvs": [[0, 0], [1, 0], [1, 1], [0, 1]],
           "indices": [0, 1, 2, 0, 2, 3] } ]
     })";
 }
@@ -193,6 +199,31 @@ TEST(PathTracer, MisBsdfOnlyAndLightOnlyConvergeToTheSameImage) {
         // for Gaussian errors); heavy-tailed pixels allow a few.
         EXPECT_LT(a.outliers, 0.01);
     }
+}
+
+// A patterned lamp is light-sampled too: light sampling reads the pattern at
+// the sampled point, BSDF sampling where the ray lands, and the MIS weights
+// of both agree, so all three estimators still converge to one image.
+TEST(PathTracer, APatternedLampIsLightSampledWithoutBias) {
+    const Image mis = renderText(roomScene(256, kPatternedLamp), "pattern_mis", LightSampling::Mis);
+    const Image bsdf =
+        renderText(roomScene(1024, kPatternedLamp), "pattern_bsdf", LightSampling::BsdfOnly);
+    const Image light =
+        renderText(roomScene(256, kPatternedLamp), "pattern_light", LightSampling::LightOnly);
+    for (const Image* other : {&bsdf, &light}) {
+        const Agreement a = compare(mis, *other);
+        EXPECT_NEAR(a.meanA, a.meanB, 0.02 * a.meanA);
+        EXPECT_LT(a.outliers, 0.01);
+    }
+    // And light sampling is what makes it converge: MIS beats BSDF sampling alone.
+    const Image bsdfSame =
+        renderText(roomScene(256, kPatternedLamp), "pattern_bsdf_256", LightSampling::BsdfOnly);
+    double vMis = 0, vBsdf = 0;
+    for (size_t i = 0; i < mis.variance.size(); ++i) {
+        vMis += mis.variance[i];
+        vBsdf += bsdfSame.variance[i];
+    }
+    EXPECT_LT(vMis, 0.5 * vBsdf);
 }
 
 TEST(PathTracer, MisHasLessVarianceThanEitherStrategyAlone) {

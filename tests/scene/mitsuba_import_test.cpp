@@ -12,6 +12,7 @@
 #include <string>
 
 #include "strahl/integrator/environment_light.h"
+#include "strahl/integrator/projector_light.h"
 #include "strahl/integrator/spot_light.h"
 #include "strahl/material/diffuse.h"
 #include "strahl/scene/scene_desc.h"
@@ -307,6 +308,27 @@ TEST(MitsubaImport, ASpotFallsOffLinearlyInTheAngleAndProjectsItsBitmap) {
     EXPECT_EQ(spot.image->texture.sampling.filter, TextureFilter::Bilinear);
     EXPECT_THAT(errorOf(scene(R"(<emitter type="spot"><transform name="to_world"><scale x="2"/></transform></emitter>)")),
                 HasSubstr("a to_world that is not a rotation (times a uniform scale) is not supported"));
+}
+
+TEST(MitsubaImport, AProjectorKeepsItsFrameAndFovAndGivesPiTimesItsIrradiance) {
+    const SceneDesc d = parse(scene(R"(<emitter type="projector">
+      <rgb name="irradiance" value="0.5"/><float name="scale" value="2"/><float name="fov" value="60"/>
+      <transform name="to_world"><lookat origin="0, 3, 0" target="0, 0, 0" up="0, 0, 1"/></transform>
+    </emitter>)"));
+    const auto& p = std::get<ProjectorLight>(d.lights.at(0).light.kind);
+    EXPECT_EQ(p.position, Vec3(0, 3, 0));
+    EXPECT_EQ(p.axis, Vec3(0, -1, 0));
+    EXPECT_NEAR(p.up.z, 1.0f, 1e-6f);
+    EXPECT_NEAR(p.irradiance.r, kPi, 1e-5f);  // π × scale × irradiance, Mitsuba's
+    EXPECT_FLOAT_EQ(p.fovDegrees, 60.0f);
+    EXPECT_EQ(p.fovAxis, ProjectorLight::FovAxis::X);
+    // Without a fov: Mitsuba's 50 mm lens, along the diagonal.
+    const SceneDesc lens = parse(scene(R"(<emitter type="projector">
+      <transform name="to_world"><lookat origin="0, 3, 0" target="0, 0, 0" up="0, 0, 1"/></transform>
+    </emitter>)"));
+    const auto& q = std::get<ProjectorLight>(lens.lights.at(0).light.kind);
+    EXPECT_EQ(q.fovAxis, ProjectorLight::FovAxis::Diagonal);
+    EXPECT_NEAR(q.fovDegrees, 46.793f, 1e-3f);
 }
 
 TEST(MitsubaImport, AnEnvmapIsAnEnvironmentLightTurnedAQuarterWithRowsFromPoleToPole) {

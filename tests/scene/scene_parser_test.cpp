@@ -529,8 +529,8 @@ TEST(SceneParser, EnumerationsListTheChoices) {
               "scene.json: /materials/0/type: must be one of diffuse, phong, blinn, conductor, "
               "dielectric, plastic, metallic_roughness, emissive, got 'glass'");
     EXPECT_EQ(errorWith(R"("lights": [{"type": "area"}])"),
-              "scene.json: /lights/0/type: must be one of point, spot, directional, sun, "
-              "environment, sky, got 'area'");
+              "scene.json: /lights/0/type: must be one of point, spot, projector, directional, "
+              "sun, environment, sky, got 'area'");
 }
 
 TEST(SceneParser, CameraConsistency) {

@@ -240,20 +240,22 @@ TEST(ShadingInput, SpotFalloffStartBeyondTheCone) {
               "got 40");
 }
 
-// A spot projecting an image (Mitsuba's spot): 2 x 2 texels, red, green /
-// blue, white, spread over the cone's base square; the image's s runs along
-// up × axis and its t along axis × (up × axis).
+// A 2 x 2 float image: red, green / blue, white.
+void writeQuadImage(const fs::path& image) {
+    std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(image.string());
+    ASSERT_TRUE(out);
+    const float texels[] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1};
+    ASSERT_TRUE(out->open(image.string(), OIIO::ImageSpec(2, 2, 3, OIIO::TypeDesc::FLOAT)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, texels));
+    ASSERT_TRUE(out->close());
+}
+
+// A spot projecting an image (Mitsuba's spot): the quad image spread over the
+// cone's base square; the image's s runs along up × axis and its t along
+// axis × (up × axis).
 TEST(ShadingInput, SpotProjectsItsImageOverTheCone) {
     const fs::path dir = test::scratchDir("shading-spot-image");
-    const fs::path image = dir / "quad.exr";
-    {
-        std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(image.string());
-        ASSERT_TRUE(out);
-        const float texels[] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1};
-        ASSERT_TRUE(out->open(image.string(), OIIO::ImageSpec(2, 2, 3, OIIO::TypeDesc::FLOAT)));
-        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, texels));
-        ASSERT_TRUE(out->close());
-    }
+    writeQuadImage(dir / "quad.exr");
     // Along -y from (0, 1, 0); up +z, so s runs along z × -y = +x and t along
     // -y × x = +z. The cone's half-angle is 45 degrees: the image spans
     // [-1, 1]² on the plane y = 0.
@@ -288,6 +290,38 @@ TEST(ShadingInput, SpotProjectsItsImageOverTheCone) {
     EXPECT_TRUE(contains(wide, "/lights/0/texture: a projected image needs cone_angle < 90 degrees")) << wide;
     EXPECT_TRUE(contains(lightError("{" + kSpot + R"(, "up": [0, 0, 1]})"),
                          "/lights/0/up: only a spot with a 'texture' has an up side"));
+}
+
+// A projector shows its image as on a screen seen from behind it: the
+// image's right on the projector's right (axis × up), its top towards up.
+TEST(ShadingInput, ProjectorShowsItsImageUnmirrored) {
+    const fs::path dir = test::scratchDir("shading-projector-image");
+    writeQuadImage(dir / "quad.exr");
+    // From (0, 1, 0) down, up +z: right = -y × z = -x. fov 90: the image
+    // spans [-1, 1]² on the floor.
+    const SceneDesc desc = parseIn(dir, R"("lights": [{"type": "projector", "position": [0, 1, 0],
+        "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "irradiance": 2,
+        "texture": {"texture": "quad.exr", "filter": "nearest"}}])");
+    const World world = buildWorld(desc, BuildOptions{});
+    const Light& projector = world.lights.at(0);
+    const auto at = [&](float x, float z) {
+        LightSampleContext ctx{Vec3(x, 0, z), Vec3(0, 1, 0), world.textures.get()};
+        const auto s = sampleLi(projector, ctx, Vec2(0.5f));
+        if (!s) return Color(0.0f);
+        return Color(s->L * glm::dot(s->wi, ctx.n) / 2.0f);  // irradiance / the scene's 2
+    };
+    const auto near = [](const Color& a, const Color& b) { return glm::length(a - b) < 1e-5f; };
+    EXPECT_TRUE(near(at(0.5f, 0.5f), Color(1, 0, 0)));    // left, top
+    EXPECT_TRUE(near(at(-0.5f, 0.5f), Color(0, 1, 0)));   // right, top
+    EXPECT_TRUE(near(at(0.5f, -0.5f), Color(0, 0, 1)));   // left, bottom
+    EXPECT_TRUE(near(at(-0.5f, -0.5f), Color(1, 1, 1)));  // right, bottom
+    EXPECT_EQ(at(1.2f, 0.0f), Color(0.0f));               // outside the frustum
+    EXPECT_TRUE(contains(lightError(R"({"type": "projector", "position": [0, 1, 0], "direction": [0, -1, 0],
+        "up": [0, 0, 1], "fov": 180})"),
+                         "/lights/0/fov: must be strictly between 0 and 180 degrees, got 180"));
+    EXPECT_TRUE(contains(lightError(R"({"type": "projector", "position": [0, 1, 0], "direction": [0, -1, 0],
+        "fov": 40})"),
+                         "the image's up is along the projector's axis"));
 }
 
 TEST(ShadingInput, SpotConeAngleZero) {

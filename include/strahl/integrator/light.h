@@ -5,6 +5,7 @@
 //
 //   point        point_light.h        radiant intensity from a point
 //   spot         spot_light.h         a point light inside a cone
+//   projector    projector_light.h    an image projected through a frustum
 //   directional  directional_light.h  irradiance from a direction, or a sun disk ("sun")
 //   environment  environment_light.h  a lat-long radiance map at infinity
 //   sky          sky_light.h          constant radiance from every direction
@@ -27,6 +28,7 @@
 #include "strahl/integrator/environment_light.h"
 #include "strahl/integrator/light_sample.h"
 #include "strahl/integrator/point_light.h"
+#include "strahl/integrator/projector_light.h"
 #include "strahl/integrator/sky_light.h"
 #include "strahl/integrator/spot_light.h"
 #include "strahl/integrator/triangle_light.h"
@@ -35,8 +37,8 @@ namespace strahl {
 
 // The closed set of light kinds; the order is the order `type` errors list the
 // scene-file names in.
-using LightKind = std::variant<PointLight, SpotLight, DirectionalLight, EnvironmentLight,
-                               SkyLight, TriangleLight>;
+using LightKind = std::variant<PointLight, SpotLight, ProjectorLight, DirectionalLight,
+                               EnvironmentLight, SkyLight, TriangleLight>;
 
 struct Light {
     LightKind kind;  // a point light of intensity 1 at the origin unless set

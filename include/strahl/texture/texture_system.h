@@ -98,6 +98,9 @@ public:
     Vec4 triplanar(TextureHandle texture, const Vec3& p, const Vec3& n, float scale,
                    float sharpness, float footprint, const TextureSampling& sampling = {}) const;
 
+    // Width and height of the full-resolution image, in texels.
+    glm::ivec2 resolution(TextureHandle texture) const;
+
     size_t textureCount() const;
 
 private:
