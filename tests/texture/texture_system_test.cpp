@@ -129,18 +129,22 @@ TEST(TextureSystem, WrapsPeriodically) {
     }
 }
 
-// The bilinear and nearest filters (Mitsuba's bitmap): the full-resolution
-// image at the point, whatever the footprint, in each wrap mode.
-TEST(TextureSystem, NearestReadsTheTexelUnderThePointInEachWrapMode) {
-    const fs::path dir = test::scratchDir("texture-nearest");
+// The bilinear and nearest filters (Mitsuba's bitmap) read the full-resolution
+// image at the point, whatever the footprint, in each wrap mode: the gradient
+// EXR along the centre line of one texel row, at footprint 0.5 (half the image).
+class ExactFilters : public testing::Test {
+protected:
+    Vec4 along(int row, float s, TextureWrap wrap, TextureFilter filter) const {
+        return textures.lookup(exr, Vec2(s, centre(0, row).y), 0.5f, {wrap, filter});
+    }
     TextureSystem textures;
-    const TextureHandle exr = textures.add(writeExr(dir), TextureEncoding::Data);
-    const auto at = [&](float s, TextureWrap wrap) {
-        return textures.lookup(exr, Vec2(s, centre(0, 1).y), 0.5f, {wrap, TextureFilter::Nearest});
-    };
+    TextureHandle exr = textures.add(writeExr(test::scratchDir("texture-exact")), TextureEncoding::Data);
+};
+
+TEST_F(ExactFilters, NearestReadsTheTexelUnderThePointInEachWrapMode) {
+    const auto at = [&](float s, TextureWrap wrap) { return along(1, s, wrap, TextureFilter::Nearest); };
     for (int x = 0; x < 4; ++x) {
-        // Anywhere inside the texel, not only at its centre; the footprint
-        // (0.5, half the image) is ignored.
+        // Anywhere inside the texel, not only at its centre.
         EXPECT_EQ(at((float(x) + 0.1f) / 4.0f, TextureWrap::Repeat), Vec4(exrTexel(x, 1), 1.0f));
         EXPECT_EQ(at((float(x) + 0.9f) / 4.0f, TextureWrap::Clamp), Vec4(exrTexel(x, 1), 1.0f));
     }
@@ -156,13 +160,8 @@ TEST(TextureSystem, NearestReadsTheTexelUnderThePointInEachWrapMode) {
     EXPECT_EQ(at(-0.1f, TextureWrap::Clamp), Vec4(exrTexel(0, 1), 1.0f));
 }
 
-TEST(TextureSystem, BilinearInterpolatesTexelCentresInEachWrapMode) {
-    const fs::path dir = test::scratchDir("texture-exact-bilinear");
-    TextureSystem textures;
-    const TextureHandle exr = textures.add(writeExr(dir), TextureEncoding::Data);
-    const auto at = [&](float s, TextureWrap wrap) {
-        return textures.lookup(exr, Vec2(s, centre(0, 2).y), 0.5f, {wrap, TextureFilter::Bilinear});
-    };
+TEST_F(ExactFilters, BilinearInterpolatesTexelCentresInEachWrapMode) {
+    const auto at = [&](float s, TextureWrap wrap) { return along(2, s, wrap, TextureFilter::Bilinear); };
     const auto mix = [](int a, int b) { return Vec4(0.5f * (exrTexel(a, 2) + exrTexel(b, 2)), 1.0f); };
     expectNear(at(0.5f, TextureWrap::Repeat), mix(1, 2), 1e-5f);
     // At s = 0: between the last and the first column, the first twice
