@@ -58,6 +58,29 @@ void TriangleMesh::validate(const std::string& source) const {
     }
 }
 
+void TriangleMesh::computeVertexNormals() {
+    std::vector<glm::dvec3> sum(positions.size(), glm::dvec3(0.0));
+    for (size_t t = 0; t < triangleCount(); ++t) {
+        const uint32_t v[3] = {indices[3 * t], indices[3 * t + 1], indices[3 * t + 2]};
+        const glm::dvec3 p[3] = {glm::dvec3(positions[v[0]]), glm::dvec3(positions[v[1]]),
+                                 glm::dvec3(positions[v[2]])};
+        const glm::dvec3 n = glm::cross(p[1] - p[0], p[2] - p[0]);
+        const double length = glm::length(n);
+        if (!(length > 0.0)) continue;  // degenerate: no direction to give
+        for (int k = 0; k < 3; ++k) {
+            const glm::dvec3 a = p[(k + 1) % 3] - p[k], b = p[(k + 2) % 3] - p[k];
+            // The corner's angle, by atan2 (accurate also for tiny and obtuse angles).
+            const double angle = std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
+            sum[v[k]] += angle * (n / length);
+        }
+    }
+    normals.resize(positions.size());
+    for (size_t i = 0; i < positions.size(); ++i) {
+        const double length = glm::length(sum[i]);
+        normals[i] = length > 0.0 ? Vec3(sum[i] / length) : Vec3(0.0f, 0.0f, 1.0f);
+    }
+}
+
 SurfaceInteraction triangleInteraction(const TriangleMesh& mesh, uint32_t prim, float u, float v) {
     const uint32_t i0 = mesh.indices[3 * size_t(prim)];
     const uint32_t i1 = mesh.indices[3 * size_t(prim) + 1];

@@ -351,8 +351,11 @@ private:
         json shape;
         if (s.type == "obj" || s.type == "ply") {
             allowOnly(s, {"filename", "to_world", "face_normals", "flip_normals"});
-            if (boolean(s, "face_normals", false)) unsupported(s, "face_normals is not supported yet");
-            shape = {{"type", "mesh"}, {"file", file(s, "mesh file")}};
+            // Mitsuba computes the normals a file lacks (smooth) unless
+            // face_normals asks for flat shading.
+            shape = {{"type", "mesh"},
+                     {"file", file(s, "mesh file")},
+                     {"normals", boolean(s, "face_normals", false) ? "flat" : "smooth"}};
         } else if (s.type == "rectangle") {
             allowOnly(s, {"to_world", "flip_normals"});
             // [-1, 1]² in the xy plane, facing +z. Mitsuba's uv is

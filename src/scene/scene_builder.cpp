@@ -243,6 +243,12 @@ BuiltScene buildScene(const SceneDesc& desc, const BuildOptions& options, BuildT
                 }
                 mesh.mesh.transform(shape.transform);
                 mesh.mesh.validate(shapeSource(desc, shape));
+                if (shape.fileNormals == ShapeDesc::FileNormals::Flat) {
+                    mesh.mesh.normals.clear();
+                } else if (shape.fileNormals == ShapeDesc::FileNormals::Smooth &&
+                           mesh.mesh.normals.empty()) {
+                    mesh.mesh.computeVertexNormals();  // in world space: after the transform
+                }
                 if (mesh.mesh.triangleCount() == 0)
                     fail(shapeSource(desc, shape), ": the mesh has no triangles");
                 if (!hasTriangleWithArea(mesh.mesh))

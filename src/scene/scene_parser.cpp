@@ -202,9 +202,18 @@ void parseMeshSource(const JsonValue& v, const fs::path& folder, const std::stri
     const auto file = v.find("file");
     if (file && v.has("positions")) v.fail("'file' and 'positions' are exclusive: give one");
     if (file) {
-        for (std::string_view key : {"indices", "normals", "uvs"}) {
+        for (std::string_view key : {"indices", "uvs"}) {
             if (auto extra = v.find(key))
                 extra->fail("only for inline meshes (with 'positions'), not with 'file'");
+        }
+        if (auto normals = v.find("normals")) {
+            if (!normals->raw().is_string())
+                normals->fail("with 'file': \"file\", \"flat\" or \"smooth\" (an array of "
+                              "normals is for inline meshes)");
+            const std::string n = normals->oneOf({"file", "flat", "smooth"});
+            s.fileNormals = n == "flat"     ? ShapeDesc::FileNormals::Flat
+                            : n == "smooth" ? ShapeDesc::FileNormals::Smooth
+                                            : ShapeDesc::FileNormals::AsGiven;
         }
         s.file = resolvePath(folder, *file);
         checkMeshFile(*file, s.file);

@@ -82,6 +82,34 @@ TEST(TriangleMesh, ValidateNamesTheProblem) {
     EXPECT_NO_THROW(oneTriangle().validate("x"));
 }
 
+// A cube's corner is shared by three faces, each meeting it at a right angle
+// however the face is split into triangles: its normal is the diagonal.
+TEST(TriangleMesh, VertexNormalsAreAngleWeightedMeansOfTheFaceNormals) {
+    TriangleMesh cube;
+    for (int i = 0; i < 8; ++i)
+        cube.positions.push_back(Vec3(float(i & 1), float((i >> 1) & 1), float((i >> 2) & 1)));
+    // Six faces, outward and counter-clockwise; the -z face split in three
+    // triangles (a fan through a mid-edge vertex) to show the weighting.
+    cube.positions.push_back(Vec3(0.5f, 0.0f, 0.0f));  // 8: on the -z face's edge 0-1
+    cube.indices = {0, 2, 8,  8, 2, 3,  8, 3, 1,   4, 5, 7, 4, 7, 6,   0, 1, 5, 0, 5, 4,
+                    2, 6, 7, 2, 7, 3,  0, 4, 6, 0, 6, 2,   1, 3, 7, 1, 7, 5};
+    cube.validate("cube");
+    cube.computeVertexNormals();
+    ASSERT_EQ(cube.normals.size(), cube.positions.size());
+    for (int i = 0; i < 8; ++i) {
+        const Vec3 expected = glm::normalize(2.0f * cube.positions[size_t(i)] - Vec3(1.0f));
+        EXPECT_NEAR(glm::dot(cube.normals[size_t(i)], expected), 1.0f, 1e-6f) << "corner " << i;
+    }
+    // The mid-edge vertex belongs to the -z face's triangles only.
+    EXPECT_NEAR(glm::dot(cube.normals[8], Vec3(0, 0, -1)), 1.0f, 1e-6f);
+    // Degenerate triangles give no direction: an isolated vertex gets +z.
+    TriangleMesh sliver;
+    sliver.positions = {Vec3(0), Vec3(1, 0, 0), Vec3(2, 0, 0)};
+    sliver.indices = {0, 1, 2};
+    sliver.computeVertexNormals();
+    EXPECT_EQ(sliver.normals[1], Vec3(0, 0, 1));
+}
+
 TEST(TriangleMesh, BoundsAndPadding) {
     TriangleMesh m = oneTriangle();
     EXPECT_EQ(m.bounds().max, Vec3(2, 2, 0));

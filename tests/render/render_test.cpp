@@ -139,8 +139,8 @@ TEST(Renderer, AovsDescribeTheFirstHit) {
 // A small scene with several triangles, lights, jittered samples and misses.
 World richWorld() {
     World world = floorWorld(0.5f, true);
-    world.lights.push_back(pointLight(Vec3(1, 3, 1), Color(5.0f)));
-    world.lights.push_back(directionalLight(glm::normalize(Vec3(-1, -2, 0)), Color(0.5f)));
+    world.lights.emplace_back(pointLight(Vec3(1, 3, 1), Color(5.0f)));
+    world.lights.emplace_back(directionalLight(glm::normalize(Vec3(-1, -2, 0)), Color(0.5f)));
     world.background = Color(0.1f, 0.2f, 0.3f);
     world.prepareLights();
     return world;

@@ -15,6 +15,7 @@
 #include "strahl/integrator/projector_light.h"
 #include "strahl/integrator/spot_light.h"
 #include "strahl/material/diffuse.h"
+#include "strahl/scene/scene_builder.h"
 #include "strahl/scene/scene_desc.h"
 #include "strahl/scene/scene_document.h"
 #include "test_support.h"
@@ -259,6 +260,32 @@ TEST(MitsubaImport, SpectraBecomeRgbAsInMitsubasRgbVariants) {
                 HasSubstr("wavelengths must increase (400 after 500)"));
     EXPECT_THAT(errorOf(scene(spectralRectangle("500:0.5, 600-0.5", "1"))),
                 HasSubstr("'600-0.5' is not a wavelength:value pair"));
+}
+
+// A mesh file without normals is smooth in Mitsuba (it computes them), flat
+// with face_normals; the file's own normals are kept otherwise.
+TEST(MitsubaImport, MeshFilesWithoutNormalsAreSmoothUnlessFaceNormals) {
+    const fs::path dir = test::scratchDir("mitsuba-normals");
+    // A square pyramid without normals: 4 sides and a base.
+    test::writeFile(dir / "pyramid.obj",
+                    "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv 0 1 0\n"
+                    "f 2 1 5\nf 3 2 5\nf 4 3 5\nf 1 4 5\nf 1 2 3 4\n");
+    const auto build = [&](const std::string& params) {
+        const SceneDesc d = parse(scene(R"(<shape type="obj"><string name="filename" value="pyramid.obj"/>)" +
+                                        params + "</shape>"),
+                                  {}, dir / "scene.xml");
+        return buildWorld(d, BuildOptions{});
+    };
+    const auto apexNormal = [](const World& w) {
+        const TriangleMesh& mesh = w.shapes.at(1).mesh;  // after the default rectangle
+        if (mesh.normals.empty()) return Vec3(0.0f);
+        for (size_t i = 0; i < mesh.positions.size(); ++i)
+            if (mesh.positions[i].y > 0.5f) return mesh.normals[i];
+        ADD_FAILURE() << "no apex";
+        return Vec3(0.0f);
+    };
+    EXPECT_NEAR(apexNormal(build("")).y, 1.0f, 1e-6f);  // the sides' mean at the apex
+    EXPECT_EQ(apexNormal(build(R"(<boolean name="face_normals" value="true"/>)")), Vec3(0.0f));
 }
 
 TEST(MitsubaImport, BitmapsAreReadAtThePointWithTheirWrapModeAndToUv) {

@@ -583,6 +583,9 @@ TEST(SceneParser, ShapeErrors) {
     EXPECT_EQ(errorOf(R"({"shapes": [{"type": "mesh", "file": "a.ply", "indices": [0, 1, 2]}]})"),
               "scene.json: /shapes/0/indices: only for inline meshes (with 'positions'), not with "
               "'file'");
+    EXPECT_EQ(errorOf(R"({"shapes": [{"type": "mesh", "file": "a.ply", "normals": [[0, 0, 1]]}]})"),
+              "scene.json: /shapes/0/normals: with 'file': \"file\", \"flat\" or \"smooth\" (an "
+              "array of normals is for inline meshes)");
     EXPECT_EQ(errorOf(R"({"shapes": [{"type": "mesh", "positions": [[0,0,0]]}]})"),
               "scene.json: /shapes/0: missing key 'indices'");
     EXPECT_EQ(errorOf(R"({"shapes": [{"type": "mesh", "positions": [], "indices": []}]})"),

@@ -27,6 +27,13 @@ struct TriangleMesh {
     // Applies an affine transform: positions by m, normals by its inverse transpose.
     void transform(const Mat4& m);
 
+    // Sets one shading normal per vertex: the mean of the unit normals of the
+    // triangles around it, each weighted by its angle at the vertex (Thürmer
+    // and Wüthrich 1998, as Mitsuba computes the normals a file lacks), so the
+    // result does not depend on how a face is split into triangles. A vertex
+    // of degenerate triangles only gets +z. Call after validate().
+    void computeVertexNormals();
+
     // Throws strahl::Error naming `source` on a NaN/Inf coordinate, an index out
     // of range, or attribute arrays whose sizes disagree with the positions.
     void validate(const std::string& source) const;

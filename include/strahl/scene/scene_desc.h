@@ -145,6 +145,10 @@ struct ShapeDesc {
     std::string name;                // optional label, defaults to the JSON pointer
     size_t group = 0;                // kind == Instance: index into SceneDesc::groups
     std::filesystem::path file;      // mesh file (resolved), empty for inline meshes
+    // A file mesh's shading normals: the file's (flat where it has none),
+    // none (flat), or the file's and else computed (smooth).
+    enum class FileNormals { AsGiven, Flat, Smooth };
+    FileNormals fileNormals = FileNormals::AsGiven;
     TriangleMesh inlineMesh;         // used when file is empty
     ImplicitSurfacePtr implicitSurface;    // kind == Implicit: f, compiled at parse time
     ImplicitShapeOptions implicitOptions;  // its box, cells and tolerance
