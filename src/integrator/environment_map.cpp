@@ -129,12 +129,17 @@ float EnvironmentMap::pdf(const Vec3& dir) const {
 }
 
 Color EnvironmentMap::average() const {
-    // Row y spans cos(theta) from cos(pi y / h) to cos(pi (y + 1) / h); its
-    // solid angle over 4 pi is the difference / 2, shared by its w texels.
+    // Row y spans cos(theta) from cos(pi y / h) to cos(pi (y + 1) / h) (rows
+    // from pole to pole: the band nearest its v = y / (h - 1), half a row each
+    // way, clamped at the poles); its solid angle over 4 pi is the difference
+    // / 2, shared by its w texels.
+    constexpr double pi = 3.14159265358979323846;
+    const bool poles = rows_ == RowLayout::PoleToPole;
     glm::dvec3 sum(0.0);
     for (int y = 0; y < height_; ++y) {
-        const double theta0 = 3.14159265358979323846 * y / height_;
-        const double theta1 = 3.14159265358979323846 * (y + 1) / height_;
+        const double theta0 = poles ? pi * std::max(0.0, (y - 0.5) / (height_ - 1)) : pi * y / height_;
+        const double theta1 =
+            poles ? pi * std::min(1.0, (y + 0.5) / (height_ - 1)) : pi * (y + 1) / height_;
         const double fraction = (std::cos(theta0) - std::cos(theta1)) / (2.0 * width_);
         glm::dvec3 rowSum(0.0);
         for (int x = 0; x < width_; ++x) rowSum += glm::dvec3(texel(x, y));

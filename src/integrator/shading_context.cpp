@@ -60,7 +60,10 @@ Color emittedTowards(const World& world, const ShadingContext& ctx, uint32_t are
         // The light's own front (its winding), as light sampling sees it.
         const Color front = triangleLe(world.lightSet.lights()[areaLight], ctx.wo);
         if (material.hasUniformEmission() || maxComponent(front) <= 0.0f) return front;
-        return emittedRadiance(material, ctx.point, world.textures.get());
+        // Read as light sampling reads it: at the point, footprint 0.
+        ShadingPoint point = ctx.point;
+        point.footprint = 0.0f;
+        return emittedRadiance(material, point, world.textures.get());
     }
     // A user shape or an emission mapped triplanar: the front is the
     // surface's own Ng.

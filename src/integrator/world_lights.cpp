@@ -6,6 +6,9 @@
 // map lets the path tracer find the light a BSDF-sampled ray hit, for the MIS
 // weight. (An emission mapped triplanar is found by BSDF sampling only.)
 
+#include <cmath>
+#include <limits>
+
 #include "strahl/core/error.h"
 #include "strahl/core/transform.h"
 #include "strahl/integrator/world.h"
@@ -23,10 +26,14 @@ uint64_t emitterKey(uint32_t instID, uint32_t geomID) {
 // that needs more should use fewer emissive instances.
 constexpr size_t kMaxAreaLights = size_t(1) << 24;
 
-// Whether next-event estimation samples the material's emission: uniform,
-// or read through the uvs (a texture or a checkerboard).
-bool lightSampled(const Material& m) {
-    return m.emits() && (m.hasUniformEmission() || m.mapping.kind == TextureMapping::Kind::UV);
+// Whether next-event estimation samples the material's emission on `shape`:
+// uniform, or read through the mesh's uvs (a texture or a checkerboard). A
+// tessellated parametric surface's hits take their uv from the exact surface,
+// not the mesh, so its patterned emission is left to BSDF sampling.
+bool lightSampled(const Material& m, const SceneShape& shape) {
+    if (!m.emits()) return false;
+    if (m.hasUniformEmission()) return true;
+    return m.mapping.kind == TextureMapping::Kind::UV && !shape.tessellated;
 }
 
 // The mean of a textured emission's pattern over its image (for the light's
@@ -52,12 +59,14 @@ void World::prepareLights() {
     }
     emitterOffset_.clear();
     areaLightOfPrim_.clear();
+    // patternMean per material, computed on first use (NaN: not yet).
+    std::vector<float> patternMeans(materials.size(), std::numeric_limits<float>::quiet_NaN());
 
     const auto addShape = [&](const SceneShape& shape, uint32_t instID, uint32_t geomID,
                               const Mat4* toWorld) {
         if (!shape.isMesh()) return;
         bool emits = false;
-        for (uint32_t m : shape.materialOfSlot) emits |= lightSampled(materials[m]);
+        for (uint32_t m : shape.materialOfSlot) emits |= lightSampled(materials[m], shape);
         if (!emits) return;
         const TriangleMesh& mesh = shape.mesh;
         const auto offset = static_cast<uint32_t>(areaLightOfPrim_.size());
@@ -66,7 +75,7 @@ void World::prepareLights() {
         for (size_t t = 0; t < mesh.triangleCount(); ++t) {
             const uint32_t slot = mesh.faceMaterials.empty() ? 0u : mesh.faceMaterials[t];
             const Material& material = materials[shape.materialOfSlot[slot]];
-            if (!lightSampled(material)) continue;
+            if (!lightSampled(material, shape)) continue;
             TriangleLight light;
             Vec3 p[3];
             for (int k = 0; k < 3; ++k) {
@@ -87,7 +96,9 @@ void World::prepareLights() {
                     light.uv1 = mesh.uvs[mesh.indices[3 * t + 1]];
                     light.uv2 = mesh.uvs[mesh.indices[3 * t + 2]];
                 }
-                light.textureMean = patternMean(material, textures.get());
+                float& mean = patternMeans[shape.materialOfSlot[slot]];
+                if (std::isnan(mean)) mean = patternMean(material, textures.get());
+                light.textureMean = mean;
             }
             if (all.size() >= kMaxAreaLights)
                 fail("the scene has more than ", kMaxAreaLights,

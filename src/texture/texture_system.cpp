@@ -190,8 +190,8 @@ private:
     static OIIO::TextureOpt options(int first, TextureWrap wrap) {
         OIIO::TextureOpt opt;
         opt.firstchannel = first;
-        // Repeat is done by wrapToUnit (exact for huge coordinates); OIIO
-        // wraps what is left, which is nothing.
+        // wrapToUnit first brings st within a period of [0, 1] (exact for
+        // huge coordinates); OIIO wraps what is left.
         const auto mode = wrap == TextureWrap::Mirror  ? OIIO::TextureOpt::WrapMirror
                           : wrap == TextureWrap::Clamp ? OIIO::TextureOpt::WrapClamp
                                                        : OIIO::TextureOpt::WrapPeriodic;
@@ -202,7 +202,8 @@ private:
     static float finiteOrZero(float x) { return std::isfinite(x) ? x : 0.0f; }
 
     // x moved by whole periods of the wrap (1 for repeat, 2 for mirror) into
-    // [0, period), or clamped to [-1, 2] (clamp: beyond, nothing changes).
+    // [0, period), or clamped to [-1, 2] (clamp: beyond, nothing changes);
+    // non-finite x is 0. Keeps texel-space values small for any resolution.
     static float reduce(float x, TextureWrap wrap) {
         x = finiteOrZero(x);
         switch (wrap) {
@@ -214,11 +215,7 @@ private:
     }
 
     static Vec2 wrapToUnit(const Vec2& st, TextureWrap wrap) {
-        if (wrap == TextureWrap::Repeat) return Vec2(wrapPeriodic(st.x), wrapPeriodic(st.y));
-        // OIIO mirrors or clamps; only non-finite and huge values are tamed
-        // here (2^20 images wide is beyond any texture's reach).
-        const auto tame = [](float x) { return std::clamp(finiteOrZero(x), -1048576.0f, 1048576.0f); };
-        return Vec2(tame(st.x), tame(st.y));
+        return Vec2(reduce(st.x, wrap), reduce(st.y, wrap));
     }
 
     // The texel index along an axis of n texels for texel-space coordinate

@@ -155,8 +155,10 @@ TEST(EnvironmentMap, RowsFromPoleToPoleSitOnTheZenithAndTheNadir) {
             // Row y at v = y / (h - 1); columns at their centres as always.
             // On the poles themselves all columns meet in one direction, so
             // the first and last rows are looked at a hair (1e-5) away.
-            const float v = std::clamp(static_cast<float>(y) / (h - 1), 1e-5f, 1.0f - 1e-5f);
-            const Vec3 dir = EnvironmentMap::direction(Vec2((x + 0.5f) / w, v));
+            const float u = (static_cast<float>(x) + 0.5f) / static_cast<float>(w);
+            const float v =
+                std::clamp(static_cast<float>(y) / static_cast<float>(h - 1), 1e-5f, 1.0f - 1e-5f);
+            const Vec3 dir = EnvironmentMap::direction(Vec2(u, v));
             expectNear(map.lookup(dir), map.texel(x, y), 1e-3f);
         }
     EXPECT_THROW(EnvironmentMap(2, 1, {Color(1.0f), Color(1.0f)}, RowLayout::PoleToPole), Error);
@@ -202,6 +204,9 @@ INSTANTIATE_TEST_SUITE_P(RowLayouts, EnvironmentMapLayouts,
 TEST(EnvironmentMap, AverageIsTheMeanOverTheSphere) {
     const EnvironmentMap constant(8, 4, std::vector<Color>(32, Color(0.5f, 1.0f, 2.0f)));
     expectNear(constant.average(), Color(0.5f, 1.0f, 2.0f), 1e-6f);
+    const EnvironmentMap poles(8, 4, std::vector<Color>(32, Color(0.5f, 1.0f, 2.0f)),
+                               RowLayout::PoleToPole);
+    expectNear(poles.average(), Color(0.5f, 1.0f, 2.0f), 1e-6f);
     // Only the top row lit: its share of the sphere is (1 - cos(pi / 4)) / 2.
     std::vector<Color> texels(32, Color(0.0f));
     for (int x = 0; x < 8; ++x) texels[static_cast<size_t>(x)] = Color(1.0f);

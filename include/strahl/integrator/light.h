@@ -67,8 +67,9 @@ Color infiniteLe(const Light& light, const Vec3& dir);
 // one, and for every other kind).
 Color triangleLe(const Light& light, const Vec3& w);
 // Total emitted power estimate (W, average of RGB) for power-proportional light
-// selection: point 4 pi I, spot 2 pi I (1 - (cosStart + cosWidth) / 2), triangle
-// pi A L (twice if two-sided); infinite lights use the scene's bounding sphere of
+// selection: point 4 pi I, spot 2 pi I (1 - (cosStart + cosWidth) / 2) (linear
+// falloff: docs/lights.md), projector E · 4 tanX tanY, triangle pi A L (twice if
+// two-sided; patterned: times the pattern's mean); infinite lights use the scene's bounding sphere of
 // radius R: directional pi R^2 E (the flux through the sphere's cross-section),
 // environment and sky 4 pi^2 R^2 L (L the mean radiance: irradiance pi L on each
 // point of the sphere's area 4 pi R^2).

@@ -14,7 +14,8 @@ class TextureSystem;
 // Where the light is sampled from: a surface point with its geometric normal
 // (zero for a point not on a surface). Only the sky uses n: it samples the
 // hemisphere n points into, so n should face the side being shaded.
-// `textures` is the world's, for lights that project an image (spot).
+// `textures` is the world's, for lights that read images: a spot's or a
+// projector's, a patterned emissive triangle's.
 struct LightSampleContext {
     Vec3 p{0.0f};
     Vec3 n{0.0f};

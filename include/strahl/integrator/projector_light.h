@@ -126,6 +126,8 @@ struct ProjectorLight {
 
     void validate(size_t index) const {
         light_detail::checkColor(index, "irradiance", irradiance);
+        if (image && !image->valid())
+            fail("light ", index, ": the projector's image '", image->file.string(), "' was not loaded");
         if (!light_detail::isUnit(axis) || !light_detail::isUnit(right) || !light_detail::isUnit(up))
             fail("light ", index, ": the projector's frame must be unit vectors");
         if (!(tanX > 0.0f && tanY > 0.0f && std::isfinite(tanX) && std::isfinite(tanY)))

@@ -15,12 +15,15 @@
 //   texture         an image texture object, multiplying the     none
 //                   intensity: {"texture": file, "wrap", "filter",
 //                   "uv_transform"}; needs cone_angle < 90
-//   up              the image's up side, not along the axis      [0, 1, 0]
+//   up              orients the image, not along the axis        [0, 1, 0]
 //
 // The projected image: with the light's frame z = axis, x = normalize(up × z),
 // y = z × x, a direction d from the light reads the image at
 //     (s, t) = (1/2 + (d·x) / (2 (d·z) tan(cone_angle)), 1/2 + (d·y) / (2 (d·z) tan(cone_angle)))
-// (s right, t down the image): the image spans the cone's base square.
+// (s right, t down the image): the image spans the cone's base square, its
+// columns along x (the light's left, looking along the axis with up up) and
+// its rows along y (up), so seen from behind the light it is turned 180°
+// (top row towards −up), as Mitsuba's spot projects it.
 
 #include <algorithm>
 #include <array>
@@ -119,6 +122,10 @@ struct SpotLight {
     }
     void validate(size_t index) const {
         light_detail::checkColor(index, "intensity", intensity);
+        if (image && !image->texture.valid())
+            fail("light ", index, ": the spot's image '", image->texture.file.string(), "' was not loaded");
+        if (image && !(cosTotalWidth > 0.0f && image->tanCone > 0.0f))
+            fail("light ", index, ": a spot with an image needs a cone under 90 degrees");
         if (!light_detail::isUnit(direction))
             fail("light ", index, ": spot direction must be a unit vector");
         if (!(-1.0f <= cosTotalWidth && cosTotalWidth <= cosFalloffStart && cosFalloffStart <= 1.0f))
@@ -170,13 +177,21 @@ struct SpotLight {
     // whose integral over the sphere's band is
     //   ∫ (a − θ)/(a − b) sin θ dθ from b to a = cos b − (sin a − sin b)/(a − b)
     // (a the cone, b the start), so that the total is 1 − (sin a − sin b)/(a − b).
+    // For the linear ramp, in double and in the form
+    //   1 − (sin a − sin b)/(a − b) = 1 − cos m · sin h / h,  m = (a + b)/2, h = (a − b)/2
+    //   = 2 sin²(m/2) + cos m · (1 − sin h / h),
+    // which keeps its digits for small cones (both terms are positive).
     float power(float /*sceneDisk*/) const {
-        float band = 0.5f * (cosFalloffStart - cosTotalWidth);
+        const double I = 2.0 * 3.14159265358979323846 * light_detail::mean(intensity);
         if (shape == Falloff::LinearAngle) {
-            const float a = std::acos(cosTotalWidth), b = std::acos(cosFalloffStart);
-            band = a > b ? cosFalloffStart - (std::sin(a) - std::sin(b)) / (a - b) : 0.0f;
+            const double a = std::acos(double(cosTotalWidth)), b = std::acos(double(cosFalloffStart));
+            const double m = 0.5 * (a + b), h = 0.5 * (a - b);
+            // 1 − sin h / h, by its series below 1e-3 (the first omitted term is h⁶/5040).
+            const double oneMinusSinc = h < 1e-3 ? h * h / 6.0 - h * h * h * h / 120.0 : 1.0 - std::sin(h) / h;
+            const double sinHalf = std::sin(0.5 * m);
+            return float(I * std::max(0.0, 2.0 * sinHalf * sinHalf + std::cos(m) * oneMinusSinc));
         }
-        return 2.0f * kPi * light_detail::mean(intensity) * ((1.0f - cosFalloffStart) + band);
+        return float(I * ((1.0 - cosFalloffStart) + 0.5 * (double(cosFalloffStart) - cosTotalWidth)));
     }
 };
 

@@ -58,22 +58,25 @@ struct World {
     std::vector<SceneShape> shapes;  // top level: geomID = index
     std::vector<Prototype> prototypes;
     std::vector<SceneInstance> instances;  // instance k has instID shapes.size() + k
+    // Not to be resized once prepareLights() ran either: textured triangle
+    // lights point at their material.
     std::vector<Material> materials;
-    std::vector<Light> lights;  // explicit lights: point, spot, directional, environment
+    std::vector<Light> lights;  // explicit lights: point, spot, projector, directional, environment
     Color background{0.0f};     // radiance of escaping rays: a constant sky light
     std::unique_ptr<Accel> accel;
     std::unique_ptr<TextureSystem> textures;  // null when no material uses a texture
     // Every light the integrators sample: `lights`, the sky of `background`
-    // and one triangle light per triangle with uniform emission (top level and
-    // in each instance). Built by prepareLights() once shapes, instances and
-    // materials are final.
+    // and one triangle light per triangle with uniform emission or emission
+    // patterned through its uvs (top level and in each instance). Built by
+    // prepareLights() once shapes, instances and materials are final.
     LightSet lightSet;
 
     void prepareLights();
     bool lightsPrepared() const { return lightsPrepared_; }
     // The lightSet index of the emissive triangle a valid hit lies on, or
-    // kInvalidId if it is not an area light (no emission, textured emission,
-    // or a user shape: those are found by BSDF sampling only).
+    // kInvalidId if it is not an area light (no emission, emission mapped
+    // triplanar or on a tessellated surface, or a user shape: those are found
+    // by BSDF sampling only).
     uint32_t areaLightOf(const Hit& hit) const;
     // Radiance a ray escaping in direction dir receives (all infinite lights).
     Color escapedRadiance(const Vec3& dir) const;
