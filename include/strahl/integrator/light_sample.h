@@ -67,5 +67,18 @@ Vec3 nonZeroDirection(const Json& v) {
     return unitVector(d);
 }
 
+// The axis of a light at `position` from the scene file: exactly one of
+// "direction" (non-zero) and "look_at" (a point other than the position),
+// normalised. Spot and projector lights read it alike.
+template <typename Json>
+Vec3 axisFrom(const Json& v, const Vec3& position) {
+    if (v.has("direction") == v.has("look_at")) v.fail("give exactly one of 'direction' and 'look_at'");
+    if (auto direction = v.find("direction")) return nonZeroDirection(*direction);
+    const auto target = v.get("look_at");
+    const Vec3 d = target.vec3() - position;
+    if (d == Vec3(0.0f)) target.fail("must differ from the position");
+    return unitVector(d);
+}
+
 }  // namespace light_detail
 }  // namespace strahl

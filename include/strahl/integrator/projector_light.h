@@ -62,14 +62,7 @@ struct ProjectorLight {
                        "irradiance", "texture"});
         ProjectorLight l;
         l.position = v.get("position").vec3();
-        if (v.has("direction") == v.has("look_at"))
-            v.fail("give exactly one of 'direction' and 'look_at'");
-        if (auto direction = v.find("direction")) l.axis = light_detail::nonZeroDirection(*direction);
-        if (auto target = v.find("look_at")) {
-            const Vec3 d = target->vec3() - l.position;
-            if (d == Vec3(0.0f)) target->fail("must differ from the position");
-            l.axis = unitVector(d);
-        }
+        l.axis = light_detail::axisFrom(v, l.position);
         Vec3 up(0.0f, 1.0f, 0.0f);
         if (auto given = v.find("up")) up = light_detail::nonZeroDirection(*given);
         const Vec3 right = glm::cross(l.axis, up);

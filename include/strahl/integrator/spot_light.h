@@ -66,15 +66,7 @@ struct SpotLight {
                        "falloff_start", "falloff", "texture", "up"});
         SpotLight l;
         l.position = v.get("position").vec3();
-        if (v.has("direction") == v.has("look_at"))
-            v.fail("give exactly one of 'direction' and 'look_at'");
-        if (auto direction = v.find("direction"))
-            l.direction = light_detail::nonZeroDirection(*direction);
-        if (auto target = v.find("look_at")) {
-            const Vec3 d = target->vec3() - l.position;
-            if (d == Vec3(0.0f)) target->fail("must differ from the position");
-            l.direction = unitVector(d);
-        }
+        l.direction = light_detail::axisFrom(v, l.position);
         if (auto intensity = v.find("intensity")) l.intensity = intensity->color();
         float coneAngle = 30.0f;
         if (auto cone = v.find("cone_angle")) coneAngle = cone->numberIn(0.01f, 180.0f, "degrees");
