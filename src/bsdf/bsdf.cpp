@@ -75,22 +75,23 @@ Bsdf Bsdf::blinnPhong(const Color& kd, const Color& ks, float exponent) {
     return b;
 }
 
-Bsdf Bsdf::conductor(const Color& eta, const Color& k, float alphaX, float alphaY) {
+Bsdf Bsdf::conductor(const Color& eta, const Color& k, float alphaX, float alphaY,
+                     MicrofacetModel microfacets) {
     requireColor("conductor", "eta", eta);
     requireColor("conductor", "k", k);
     requireNonNegative("conductor", "alphaX", alphaX);
     requireNonNegative("conductor", "alphaY", alphaY);
     // albedo: the normal-incidence reflectance F0.
-    return Bsdf(ConductorModel{GgxDistribution(alphaX, alphaY), eta, k},
+    return Bsdf(ConductorModel{MicrofacetDistribution(alphaX, alphaY, microfacets), eta, k},
                 fresnelConductor(1.0f, eta, k));
 }
 
-Bsdf Bsdf::dielectric(float eta, float alpha, const Color& tint) {
+Bsdf Bsdf::dielectric(float eta, float alpha, const Color& tint, MicrofacetModel microfacets) {
     requirePositive("dielectric", "eta", eta);
     requireNonNegative("dielectric", "alpha", alpha);
     requireColor("dielectric", "tint", tint);
     // albedo: glass passes everything (R + T = 1) up to the tint.
-    return Bsdf(DielectricModel{GgxDistribution(alpha, alpha), eta, tint}, tint);
+    return Bsdf(DielectricModel{MicrofacetDistribution(alpha, alpha, microfacets), eta, tint}, tint);
 }
 
 Bsdf Bsdf::plastic(const Color& kd, float eta, float alpha) {
@@ -99,7 +100,7 @@ Bsdf Bsdf::plastic(const Color& kd, float eta, float alpha) {
     requireNonNegative("plastic", "alpha", alpha);
     const Color base = clamp01(kd);
     // Seen from inside the coat the relative index is 1 / eta.
-    return Bsdf(PlasticModel{GgxDistribution(alpha, alpha), base, eta,
+    return Bsdf(PlasticModel{MicrofacetDistribution(alpha, alpha), base, eta,
                              fresnelDiffuseReflectance(1.0f / eta)},
                 base);
 }
@@ -112,7 +113,7 @@ Bsdf Bsdf::metallicRoughness(const Color& base, float metallic, float alpha, flo
     const Color b = clamp01(base);
     const float a = std::min(alpha, 1.0f);
     // albedo: the diffuse colour of the dielectric and the F0 of the metal.
-    return Bsdf(MetallicRoughnessModel{GgxDistribution(a, a), b, std::min(metallic, 1.0f),
+    return Bsdf(MetallicRoughnessModel{MicrofacetDistribution(a, a), b, std::min(metallic, 1.0f),
                                        dielectricF0(eta)},
                 b);
 }

@@ -37,7 +37,7 @@ Color DielectricModel::f(const Vec3& wo, const Vec3& wi) const {
     float etap;
     if (!halfVector(wo, wi, eta, wm, etap)) return Color(0.0f);
     const float fresnel = fresnelDielectric(glm::dot(wo, wm), eta);
-    const float dg = ggx.d(wm) * ggx.g(wo, wi);
+    const float dg = microfacets.d(wm) * microfacets.g(wo, wi);
     if (etap == 1.0f) return tint * (dg * fresnel / std::abs(4.0f * wi.z * wo.z));
     // Walter et al. eq. 21: D G (1 - F) |wi.m| |wo.m| / (|cos_i cos_o| (wi.m + wo.m / etap)^2),
     // then / etap^2 for radiance.
@@ -57,12 +57,12 @@ float DielectricModel::pdf(const Vec3& wo, const Vec3& wi) const {
     // The lobe is chosen with probability R (reflection) or T = 1 - R.
     const float r = fresnelDielectric(glm::dot(wo, wm), eta);
     const float cosOm = glm::dot(wo, wm), cosIm = glm::dot(wi, wm);
-    if (etap == 1.0f) return ggx.visibleD(wo, wm) / (4.0f * std::abs(cosOm)) * r;
+    if (etap == 1.0f) return microfacets.normalPdf(wo, wm) / (4.0f * std::abs(cosOm)) * r;
     // Refraction Jacobian dm/dwi = |wi.m| / (wi.m + wo.m / etap)^2.
     const float sqrtDenom = cosIm + cosOm / etap;
     if (sqrtDenom == 0.0f) return 0.0f;
     const float dwmDwi = std::abs(cosIm) / (sqrtDenom * sqrtDenom);
-    return ggx.visibleD(wo, wm) * dwmDwi * (1.0f - r);
+    return microfacets.normalPdf(wo, wm) * dwmDwi * (1.0f - r);
 }
 
 std::optional<BsdfSample> DielectricModel::sample(const Vec3& wo, float uLobe,
@@ -89,7 +89,7 @@ std::optional<BsdfSample> DielectricModel::sample(const Vec3& wo, float uLobe,
         s.eta = etap;
         return s;
     }
-    const Vec3 wm = ggx.sampleVisibleNormal(wo, u);
+    const Vec3 wm = microfacets.sampleNormal(wo, u);
     const float r = fresnelDielectric(glm::dot(wo, wm), eta);
     if (uLobe < r) {
         s.wi = reflectDir(wo, wm);

@@ -82,18 +82,18 @@ private:
     }
 
     static AlbedoPair integrate(float mu, float alpha) {
-        if (alpha < GgxDistribution::kSmoothAlpha) return {1.0f, schlickWeight(mu)};
+        if (alpha < MicrofacetDistribution::kSmoothAlpha) return {1.0f, schlickWeight(mu)};
         // The horizon itself is degenerate; its limit is approached from 1e-4.
         const float cosO = std::max(mu, 1e-4f);
         const Vec3 wo(std::sqrt(1.0f - cosO * cosO), 0.0f, cosO);
-        const GgxDistribution ggx(alpha, alpha);
+        const MicrofacetDistribution ggx(alpha, alpha);
         const float g1 = ggx.g1(wo);
         double e1 = 0.0, e5 = 0.0;
         for (int sy = 0; sy < kStrata; ++sy) {
             for (int sx = 0; sx < kStrata; ++sx) {
                 const Vec2 u((static_cast<float>(sx) + 0.5f) / kStrata,
                              (static_cast<float>(sy) + 0.5f) / kStrata);
-                const Vec3 m = ggx.sampleVisibleNormal(wo, u);
+                const Vec3 m = ggx.sampleNormal(wo, u);
                 const float cosOm = glm::dot(wo, m);
                 const Vec3 wi = reflectDir(wo, m);
                 if (cosOm <= 0.0f || wi.z <= 0.0f) continue;
@@ -123,13 +123,13 @@ const AlbedoTable& albedoTable() {
 }  // namespace
 
 float ggxSchlickAlbedo(float cosThetaO, float alpha, float f0) {
-    if (alpha < GgxDistribution::kSmoothAlpha) return fresnelSchlick(f0, cosThetaO);
+    if (alpha < MicrofacetDistribution::kSmoothAlpha) return fresnelSchlick(f0, cosThetaO);
     return albedoTable().albedo(cosThetaO, alpha, f0);
 }
 
 float ggxSchlickAverageAlbedo(float alpha, float f0) {
     // Smooth: 2 integral (1 - mu)^5 mu dmu = 2 B(2, 6) = 1 / 21.
-    if (alpha < GgxDistribution::kSmoothAlpha) return f0 + (1.0f - f0) / 21.0f;
+    if (alpha < MicrofacetDistribution::kSmoothAlpha) return f0 + (1.0f - f0) / 21.0f;
     return albedoTable().average(alpha, f0);
 }
 

@@ -32,20 +32,20 @@ std::optional<BsdfSample> completeSample(const Model& model, const Vec3& wo, con
     return s;
 }
 
-// Samples a GGX specular lobe, chosen with probability specularProbability, or
+// Samples a microfacet specular lobe, chosen with probability specularProbability, or
 // else the cosine-weighted diffuse lobe (PlasticModel, MetallicRoughnessModel).
-// A smooth ggx makes the specular lobe the delta mirror reflectZ(wo), weighted
+// A smooth distribution makes the specular lobe the delta mirror reflectZ(wo), weighted
 // by mirrorFresnel() (called only then: the Fresnel reflectance at wo.z) with
 // the lobe probability as its pdf; a rough one reflects wo about a visible
 // normal. The non-delta samples are finished by completeSample.
 template <typename Model, typename MirrorFresnel>
-std::optional<BsdfSample> sampleGgxOrDiffuse(const Model& model, const GgxDistribution& ggx,
+std::optional<BsdfSample> sampleMicrofacetOrDiffuse(const Model& model, const MicrofacetDistribution& microfacets,
                                              float specularProbability,
                                              const MirrorFresnel& mirrorFresnel, const Vec3& wo,
                                              float uLobe, const Vec2& u) {
     Vec3 wi;
     if (uLobe < specularProbability) {
-        if (ggx.smooth()) {
+        if (microfacets.smooth()) {
             BsdfSample s;
             s.wi = reflectZ(wo);
             s.f = Color(mirrorFresnel()) / s.wi.z;
@@ -53,7 +53,7 @@ std::optional<BsdfSample> sampleGgxOrDiffuse(const Model& model, const GgxDistri
             s.specular = true;
             return s;
         }
-        const Vec3 m = ggx.sampleVisibleNormal(wo, u);
+        const Vec3 m = microfacets.sampleNormal(wo, u);
         if (glm::dot(wo, m) <= 0.0f) return std::nullopt;
         wi = reflectDir(wo, m);
     } else {
@@ -65,12 +65,12 @@ std::optional<BsdfSample> sampleGgxOrDiffuse(const Model& model, const GgxDistri
 // The pdf of that mixture: (1 - ps) times the cosine density, plus ps times
 // the visible-normal density of the reflection (pdf 0 for a delta mirror).
 // wo and wi must both be in the upper hemisphere.
-inline float ggxOrDiffusePdf(const GgxDistribution& ggx, float specularProbability, const Vec3& wo,
+inline float microfacetOrDiffusePdf(const MicrofacetDistribution& microfacets, float specularProbability, const Vec3& wo,
                              const Vec3& wi) {
     float result = (1.0f - specularProbability) * cosineHemispherePdf(wi.z);
-    if (!ggx.smooth()) {
+    if (!microfacets.smooth()) {
         const Vec3 m = glm::normalize(wo + wi);
-        result += specularProbability * ggx.visibleD(wo, m) / (4.0f * glm::dot(wo, m));
+        result += specularProbability * microfacets.normalPdf(wo, m) / (4.0f * glm::dot(wo, m));
     }
     return result;
 }

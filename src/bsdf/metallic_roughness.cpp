@@ -55,13 +55,13 @@ Color MetallicRoughnessModel::f(const Vec3& wo, const Vec3& wi) const {
 
 float MetallicRoughnessModel::pdf(const Vec3& wo, const Vec3& wi) const {
     if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
-    return ggxOrDiffusePdf(ggx, specularProbability(wo), wo, wi);
+    return microfacetOrDiffusePdf(ggx, specularProbability(wo), wo, wi);
 }
 
 std::optional<BsdfSample> MetallicRoughnessModel::sample(const Vec3& wo, float uLobe,
                                                          const Vec2& u) const {
     if (wo.z <= 0.0f) return std::nullopt;
-    return sampleGgxOrDiffuse(
+    return sampleMicrofacetOrDiffuse(
         *this, ggx, specularProbability(wo), [&] { return specularFresnel(wo.z); }, wo, uLobe, u);
 }
 

@@ -32,24 +32,24 @@ Color PlasticModel::diffuseF(const Vec3& wo, const Vec3& wi) const {
 Color PlasticModel::f(const Vec3& wo, const Vec3& wi) const {
     if (wo.z <= 0.0f || wi.z <= 0.0f) return Color(0.0f);
     Color result = diffuseF(wo, wi);
-    if (!ggx.smooth()) {
+    if (!microfacets.smooth()) {
         const Vec3 m = glm::normalize(wo + wi);
         const float fresnel = fresnelDielectric(glm::dot(wo, m), eta);
-        result += Color(fresnel * ggx.d(m) * ggx.g(wo, wi) / (4.0f * wo.z * wi.z));
+        result += Color(fresnel * microfacets.d(m) * microfacets.g(wo, wi) / (4.0f * wo.z * wi.z));
     }
     return result;
 }
 
 float PlasticModel::pdf(const Vec3& wo, const Vec3& wi) const {
     if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
-    return ggxOrDiffusePdf(ggx, specularProbability(fresnelDielectric(wo.z, eta)), wo, wi);
+    return microfacetOrDiffusePdf(microfacets, specularProbability(fresnelDielectric(wo.z, eta)), wo, wi);
 }
 
 std::optional<BsdfSample> PlasticModel::sample(const Vec3& wo, float uLobe, const Vec2& u) const {
     if (wo.z <= 0.0f) return std::nullopt;
     const float fresnelO = fresnelDielectric(wo.z, eta);
-    return sampleGgxOrDiffuse(
-        *this, ggx, specularProbability(fresnelO), [&] { return fresnelO; }, wo, uLobe, u);
+    return sampleMicrofacetOrDiffuse(
+        *this, microfacets, specularProbability(fresnelO), [&] { return fresnelO; }, wo, uLobe, u);
 }
 
 }  // namespace strahl::bsdf_models

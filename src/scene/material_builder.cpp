@@ -65,7 +65,6 @@ Material fromObj(const MeshMaterial& m, const std::string& name, World& world) {
                                     Color(0.0f), Color(0.999f));
         conductor.eta = Color(1.0f);
         conductor.k = 2.0f * glm::sqrt(f0 / (Color(1.0f) - f0));
-        conductor.roughness.value = 0.0f;
         mat.kind = conductor;
     } else if (maxComponent(m.specular) > 0.0f && m.shininess > 0.0f) {
         PhongMaterial phong;

@@ -88,6 +88,11 @@ std::vector<Case> everyModel() {
         cases.push_back({"silver" + s, Bsdf::conductor(silver.eta, silver.k, a, a)});
         cases.push_back({"glass 1.5" + s, Bsdf::dielectric(1.5f, a)});
         cases.push_back({"glass 1/1.5" + s, Bsdf::dielectric(1.0f / 1.5f, a)});
+        const MicrofacetModel beckmann{MicrofacetType::Beckmann, MicrofacetMasking::Separable};
+        cases.push_back({"beckmann F=1" + s,
+                         Bsdf::conductor(Color(0.0f), Color(1.0f), a, a, beckmann)});
+        cases.push_back(
+            {"beckmann glass 1.5" + s, Bsdf::dielectric(1.5f, a, Color(1.0f), beckmann)});
         cases.push_back({"plastic" + s, Bsdf::plastic(Color(1.0f), 1.5f, a)});
         for (float metallic : {0.0f, 0.5f, 1.0f}) {
             cases.push_back({"metallic-roughness m=" + std::to_string(metallic) + s,

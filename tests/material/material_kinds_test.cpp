@@ -43,7 +43,7 @@ TEST(MaterialKinds, KindNameOfAMaterial) {
 TEST(MaterialKinds, ForEachTextureVisitsTheKindsTexturesThenEmissionAndNormalMap) {
     const std::vector<std::pair<MaterialKind, int>> cases = {
         {DiffuseMaterial{}, 1},    {PhongMaterial{}, 1},     {BlinnMaterial{}, 1},
-        {ConductorMaterial{}, 1},  {DielectricMaterial{}, 2}, {PlasticMaterial{}, 2},
+        {ConductorMaterial{}, 2},  {DielectricMaterial{}, 2}, {PlasticMaterial{}, 2},
         {MetallicRoughnessMaterial{}, 3}, {EmissiveMaterial{}, 0}};
     for (const auto& [kind, own] : cases) {
         Material m;

@@ -48,13 +48,15 @@ public:
     // per channel keeps the albedo at or below 1.
     static Bsdf phong(const Color& kd, const Color& ks, float exponent);
     static Bsdf blinnPhong(const Color& kd, const Color& ks, float exponent);
-    // GGX (Trowbridge-Reitz) microfacet conductor with complex Fresnel and
-    // visible-normal sampling (Heitz 2018). alpha 0 (both) is a smooth mirror.
-    static Bsdf conductor(const Color& eta, const Color& k, float alphaX, float alphaY);
-    // Smooth (alpha 0) or rough (GGX, Walter et al. 2007) dielectric interface.
+    // Microfacet conductor (GGX by default, or Beckmann; microfacet.h) with
+    // complex Fresnel. alpha 0 (both) is a smooth mirror.
+    static Bsdf conductor(const Color& eta, const Color& k, float alphaX, float alphaY,
+                          MicrofacetModel microfacets = {});
+    // Smooth (alpha 0) or rough (Walter et al. 2007) dielectric interface.
     // eta = n_inside / n_outside, inside being the -z side. `tint` multiplies
     // both reflection and transmission (1 for clear glass).
-    static Bsdf dielectric(float eta, float alpha, const Color& tint = Color(1.0f));
+    static Bsdf dielectric(float eta, float alpha, const Color& tint = Color(1.0f),
+                           MicrofacetModel microfacets = {});
     // Lambertian base under a smooth or rough dielectric coat (plastic); kd is
     // clamped to [0, 1] (the base-coat inter-reflection series needs kd < 1/F).
     static Bsdf plastic(const Color& kd, float eta, float alpha);

@@ -58,11 +58,11 @@ struct PhongModel {
 
 // GGX conductor with exact complex Fresnel; a delta mirror when smooth.
 struct ConductorModel {
-    GgxDistribution ggx;
+    MicrofacetDistribution microfacets;
     Color eta, k;
 
     static constexpr bool kOpaque = true;
-    bool specular() const { return ggx.smooth(); }
+    bool specular() const { return microfacets.smooth(); }
     Color f(const Vec3& wo, const Vec3& wi) const;
     float pdf(const Vec3& wo, const Vec3& wi) const;
     std::optional<BsdfSample> sample(const Vec3& wo, float uLobe, const Vec2& u) const;
@@ -70,12 +70,12 @@ struct ConductorModel {
 
 // Smooth or rough (Walter et al. 2007) dielectric interface, radiance transport.
 struct DielectricModel {
-    GgxDistribution ggx;
+    MicrofacetDistribution microfacets;
     float eta = 1.5f;  // n_inside / n_outside, inside = -z
     Color tint{1.0f};
 
     static constexpr bool kOpaque = false;
-    bool smooth() const { return ggx.smooth() || eta == 1.0f; }
+    bool smooth() const { return microfacets.smooth() || eta == 1.0f; }
     bool specular() const { return smooth(); }
     Color f(const Vec3& wo, const Vec3& wi) const;
     float pdf(const Vec3& wo, const Vec3& wi) const;
@@ -84,14 +84,14 @@ struct DielectricModel {
 
 // Lambertian base under a smooth (delta) or rough (GGX) dielectric coat.
 struct PlasticModel {
-    GgxDistribution ggx;
+    MicrofacetDistribution microfacets;
     Color kd;
     float eta = 1.5f;
     float internalReflectance = 0.0f;  // Fbar_dr seen from inside the coat
 
     static constexpr bool kOpaque = true;
     // A black base leaves only the coat's delta lobe when it is smooth.
-    bool specular() const { return ggx.smooth() && maxComponent(kd) == 0.0f; }
+    bool specular() const { return microfacets.smooth() && maxComponent(kd) == 0.0f; }
     float specularProbability(float fresnelO) const;
     Color diffuseF(const Vec3& wo, const Vec3& wi) const;
     Color f(const Vec3& wo, const Vec3& wi) const;
@@ -103,7 +103,7 @@ struct PlasticModel {
 // base, metallic), plus (1 - metallic) base-coloured diffuse coupled to the
 // dielectric specular's albedo (Kelemen & Szirmay-Kalos 2001).
 struct MetallicRoughnessModel {
-    GgxDistribution ggx;
+    MicrofacetDistribution ggx;
     Color base;
     float metallic = 0.0f;
     float f0Dielectric = 0.04f;

@@ -10,7 +10,7 @@
 namespace strahl {
 
 // E(mu) for alpha in [0, 1] (larger values clamp to 1); exact Schlick below
-// GgxDistribution::kSmoothAlpha.
+// MicrofacetDistribution::kSmoothAlpha.
 float ggxSchlickAlbedo(float cosThetaO, float alpha, float f0);
 
 // 2 * integral_0^1 E(mu) mu dmu, integrated exactly from the same bilinear

@@ -1,11 +1,15 @@
 #pragma once
-// "conductor": a GGX microfacet metal with the exact complex Fresnel term
+// "conductor": a microfacet metal with the exact complex Fresnel term
 // (docs/materials.md); roughness 0 is a smooth mirror.
 //
-//   key         value                                              default
-//   metal       a preset name (bsdf/metal_presets.cpp): "gold", ...  aluminium
-//   eta, k      complex index of refraction per channel (not with metal)
-//   roughness   perceptual roughness, alpha = r^2: number or texture  0
+//   key           value                                              default
+//   metal         a preset name (bsdf/metal_presets.cpp): "gold", ...  aluminium
+//   eta, k        complex index of refraction per channel (not with metal)
+//   roughness     perceptual roughness, alpha = r^2: number or texture  0
+//   roughness_u,  anisotropic roughness along the surface's dp/du and
+//   roughness_v   across it (instead of roughness)
+//   distribution  "ggx" | "beckmann"                                 ggx
+//   masking       "height_correlated" | "separable"                  height_correlated
 
 #include <array>
 #include <string>
@@ -18,12 +22,16 @@ namespace strahl {
 
 struct ConductorMaterial {
     static constexpr std::string_view kName = "conductor";
-    static constexpr std::array<std::string_view, 4> kKeys = {"metal", "eta", "k", "roughness"};
+    static constexpr std::array<std::string_view, 8> kKeys = {
+        "metal",       "eta",          "k",           "roughness",
+        "roughness_u", "roughness_v", "distribution", "masking"};
 
     // Without a preset or eta/k: a near-perfect aluminium mirror.
     Color eta = findMetalPreset("aluminium")->eta;
     Color k = findMetalPreset("aluminium")->k;
-    TexturedFloat roughness{0.0f, {}, 1};
+    TexturedFloat roughnessU{0.0f, {}, 1};
+    TexturedFloat roughnessV{0.0f, {}, 1};
+    MicrofacetModel microfacets;
 
     template <typename Reader>
     static ConductorMaterial parse(const Reader& r) {
@@ -46,16 +54,24 @@ struct ConductorMaterial {
             if (auto eta = r.find("eta")) m.eta = eta->color();
             if (auto k = r.find("k")) m.k = k->color();
         }
-        material_parsing::roughness(r, m.roughness);
+        if (r.has("roughness") && (r.has("roughness_u") || r.has("roughness_v")))
+            r.fail("give either 'roughness' or 'roughness_u' and 'roughness_v', not both");
+        if (r.has("roughness_u") != r.has("roughness_v"))
+            r.fail("'roughness_u' and 'roughness_v' go together");
+        material_parsing::roughness(r, m.roughnessU);
+        m.roughnessV = m.roughnessU;
+        r.texturedFloat("roughness_u", 0.0f, 1.0f, m.roughnessU);
+        r.texturedFloat("roughness_v", 0.0f, 1.0f, m.roughnessV);
+        material_parsing::microfacetModel(r, m.microfacets);
         return m;
     }
     Bsdf bsdf(const MaterialPoint& p) const {
-        const float a = p.alpha(roughness);
-        return Bsdf::conductor(eta, k, a, a);
+        return Bsdf::conductor(eta, k, p.alpha(roughnessU), p.alpha(roughnessV), microfacets);
     }
     template <typename Fn>
     void forEachTexture(Fn&& fn) {
-        fn(roughness.texture, TextureEncoding::Data);
+        fn(roughnessU.texture, TextureEncoding::Data);
+        fn(roughnessV.texture, TextureEncoding::Data);
     }
 };
 

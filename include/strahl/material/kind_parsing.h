@@ -3,9 +3,10 @@
 // are templates over the scene module's reader (scene/material_parser.cpp
 // instantiates them), so the material headers need no JSON library. The
 // reader offers has(key), find(key) (an optional JSON value with color(),
-// numberIn(lo, hi), string(), fail(...)), texturedColor(key, out),
+// numberIn(lo, hi), string(), oneOf({...}), fail(...)), texturedColor(key, out),
 // texturedFloat(key, lo, hi, out) and fail(...).
 
+#include "strahl/bsdf/microfacet.h"
 #include "strahl/material/textured.h"
 
 namespace strahl::material_parsing {
@@ -29,6 +30,21 @@ void ior(const Reader& r, float& ior) {
 template <typename Reader>
 void roughness(const Reader& r, TexturedFloat& roughness) {
     r.texturedFloat("roughness", 0.0f, 1.0f, roughness);
+}
+
+// "distribution": "ggx" (default) | "beckmann", and "masking":
+// "height_correlated" (default) | "separable" (Mitsuba's G1(wo) G1(wi)).
+template <typename Reader>
+void microfacetModel(const Reader& r, MicrofacetModel& model) {
+    if (auto value = r.find("distribution")) {
+        model.type = value->oneOf({"ggx", "beckmann"}) == "ggx" ? MicrofacetType::Ggx
+                                                                : MicrofacetType::Beckmann;
+    }
+    if (auto value = r.find("masking")) {
+        model.masking = value->oneOf({"height_correlated", "separable"}) == "separable"
+                            ? MicrofacetMasking::Separable
+                            : MicrofacetMasking::HeightCorrelated;
+    }
 }
 
 }  // namespace strahl::material_parsing
