@@ -94,15 +94,19 @@ Bsdf Bsdf::dielectric(float eta, float alpha, const Color& tint, MicrofacetModel
     return Bsdf(DielectricModel{MicrofacetDistribution(alpha, alpha, microfacets), eta, tint}, tint);
 }
 
-Bsdf Bsdf::plastic(const Color& kd, float eta, float alpha) {
+Bsdf Bsdf::plastic(const Color& kd, float eta, float alpha, const PlasticCoat& coat) {
     requireColor("plastic", "kd", kd);
     requirePositive("plastic", "eta", eta);
     requireNonNegative("plastic", "alpha", alpha);
+    if (coat.rough && coat.rough->eta() != eta)
+        fail("plastic: the rough coat's tables were made for another index of refraction");
     const Color base = clamp01(kd);
+    const MicrofacetDistribution microfacets(alpha, alpha, coat.microfacets);
     // Seen from inside the coat the relative index is 1 / eta.
-    return Bsdf(PlasticModel{MicrofacetDistribution(alpha, alpha), base, eta,
-                             fresnelDiffuseReflectance(1.0f / eta)},
-                base);
+    const float internal = coat.rough && !microfacets.smooth()
+                               ? coat.rough->internalReflectance(microfacets.alphaX())
+                               : fresnelDiffuseReflectance(1.0f / eta);
+    return Bsdf(PlasticModel{microfacets, base, eta, internal, coat.nonlinear, coat.rough}, base);
 }
 
 Bsdf Bsdf::metallicRoughness(const Color& base, float metallic, float alpha, float eta) {

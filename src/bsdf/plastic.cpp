@@ -1,5 +1,5 @@
 // Plastic: a Lambertian base under a dielectric coat, smooth (delta specular)
-// or rough (GGX). The diffuse term accounts for the two coat crossings and the
+// or rough (microfacets). The diffuse term accounts for the two coat crossings and the
 // light bouncing between base and coat (Mitsuba's "plastic"); derivation in
 // docs/materials.md, "Plastic".
 
@@ -9,24 +9,33 @@
 
 namespace strahl::bsdf_models {
 
-float PlasticModel::specularProbability(float fresnelO) const {
-    // Lobe weights: the coat's reflectance F(wo) against the diffuse albedo
-    // (1 - F(wo)) kd (1 - Fbar_int) / (1 - kd Fbar_int) (see diffuseF).
-    const Color multiple = (Color(1.0f) - kd * internalReflectance);
+float PlasticModel::coatTransmittance(float cosTheta) const {
+    if (roughCoat && !microfacets.smooth())
+        return roughCoat->transmittance(microfacets.alphaX(), cosTheta);
+    return 1.0f - fresnelDielectric(cosTheta, eta);
+}
+
+float PlasticModel::specularProbability(float coatTransmittanceO) const {
+    // Lobe weights: what the coat reflects, about 1 - T(wo), against the
+    // diffuse albedo T(wo) kd (1 - Fbar_int) / (1 - kd Fbar_int) (see diffuseF).
+    const Color multiple = Color(1.0f) - (nonlinear ? kd * internalReflectance
+                                                    : Color(internalReflectance));
     const Color diffuseAlbedo = kd * (1.0f - internalReflectance) / multiple;
-    const float d = (1.0f - fresnelO) * mean(diffuseAlbedo);
-    return fresnelO + d > 0.0f ? fresnelO / (fresnelO + d) : 1.0f;
+    const float r = 1.0f - coatTransmittanceO;
+    const float d = coatTransmittanceO * mean(diffuseAlbedo);
+    return r + d > 0.0f ? r / (r + d) : 1.0f;
 }
 
 Color PlasticModel::diffuseF(const Vec3& wo, const Vec3& wi) const {
     if (wo.z <= 0.0f || wi.z <= 0.0f) return Color(0.0f);
-    // (1 - F(wi)) (1 - F(wo)) kd / (pi eta^2 (1 - kd Fbar_int)): transmission in
-    // and out of the coat, the radiance compression 1 / eta^2 of the way out,
-    // and the geometric series of base-coat inter-reflections.
-    const float tIn = 1.0f - fresnelDielectric(wi.z, eta);
-    const float tOut = 1.0f - fresnelDielectric(wo.z, eta);
-    const Color denom = kPi * eta * eta * (Color(1.0f) - kd * internalReflectance);
-    return tIn * tOut * kd / denom;
+    // T(wi) T(wo) kd / (pi eta^2 (1 - kd Fbar_int)): transmission in and out
+    // of the coat, the radiance compression 1 / eta^2 of the way out, and the
+    // geometric series of base-coat inter-reflections (Mitsuba's "linear"
+    // variant leaves kd out of the series: 1 - Fbar_int).
+    const float tIn = coatTransmittance(wi.z), tOut = coatTransmittance(wo.z);
+    const Color series = Color(1.0f) - (nonlinear ? kd * internalReflectance
+                                                  : Color(internalReflectance));
+    return tIn * tOut * kd / (kPi * eta * eta * series);
 }
 
 Color PlasticModel::f(const Vec3& wo, const Vec3& wi) const {
@@ -42,14 +51,15 @@ Color PlasticModel::f(const Vec3& wo, const Vec3& wi) const {
 
 float PlasticModel::pdf(const Vec3& wo, const Vec3& wi) const {
     if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
-    return microfacetOrDiffusePdf(microfacets, specularProbability(fresnelDielectric(wo.z, eta)), wo, wi);
+    return microfacetOrDiffusePdf(microfacets, specularProbability(coatTransmittance(wo.z)), wo, wi);
 }
 
 std::optional<BsdfSample> PlasticModel::sample(const Vec3& wo, float uLobe, const Vec2& u) const {
     if (wo.z <= 0.0f) return std::nullopt;
-    const float fresnelO = fresnelDielectric(wo.z, eta);
+    const float transmittanceO = coatTransmittance(wo.z);
     return sampleMicrofacetOrDiffuse(
-        *this, microfacets, specularProbability(fresnelO), [&] { return fresnelO; }, wo, uLobe, u);
+        *this, microfacets, specularProbability(transmittanceO),
+        [&] { return 1.0f - transmittanceO; }, wo, uLobe, u);
 }
 
 }  // namespace strahl::bsdf_models

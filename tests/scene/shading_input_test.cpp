@@ -67,7 +67,8 @@ TEST(ShadingInput, UnknownMaterialTypeListsTheTypes) {
 TEST(ShadingInput, KeyOfAnotherTypeListsTheAllowedKeys) {
     EXPECT_EQ(materialError(R"({"name": "m", "type": "conductor", "color": [1, 0.8, 0.3]})"),
               "scene.json: /materials/0: unknown key 'color' for a conductor material (allowed: "
-              "name, type, emission, two_sided, normal_map, mapping, metal, eta, k, roughness)");
+              "name, type, emission, two_sided, normal_map, mapping, metal, eta, k, roughness, "
+              "roughness_u, roughness_v, distribution, masking)");
 }
 
 TEST(ShadingInput, NegativeColourNamesTheComponent) {
@@ -109,6 +110,22 @@ TEST(ShadingInput, UnknownMetalListsThePresets) {
     EXPECT_EQ(materialError(R"({"name": "m", "type": "conductor", "metal": "unobtainium"})"),
               "scene.json: /materials/0/metal: unknown metal 'unobtainium' (known: gold, silver, "
               "copper, aluminium, chromium, iron, titanium, nickel, platinum)");
+}
+
+TEST(ShadingInput, MicrofacetModelKeys) {
+    EXPECT_EQ(materialError(R"({"name": "m", "type": "conductor", "distribution": "phong"})"),
+              "scene.json: /materials/0/distribution: must be one of ggx, beckmann, got 'phong'");
+    EXPECT_EQ(materialError(R"({"name": "m", "type": "dielectric", "masking": "none"})"),
+              "scene.json: /materials/0/masking: must be one of height_correlated, separable, "
+              "got 'none'");
+    EXPECT_EQ(materialError(
+                  R"({"name": "m", "type": "conductor", "roughness": 0.2, "roughness_u": 0.1})"),
+              "scene.json: /materials/0: give either 'roughness' or 'roughness_u' and "
+              "'roughness_v', not both");
+    EXPECT_EQ(materialError(R"({"name": "m", "type": "conductor", "roughness_v": 0.1})"),
+              "scene.json: /materials/0: 'roughness_u' and 'roughness_v' go together");
+    EXPECT_EQ(materialError(R"({"name": "m", "type": "plastic", "coat_transmittance": 1})"),
+              "scene.json: /materials/0/coat_transmittance: expected a string, got number 1");
 }
 
 TEST(ShadingInput, PhongThatReflectsMoreThanItReceives) {

@@ -59,7 +59,17 @@ public:
                            MicrofacetModel microfacets = {});
     // Lambertian base under a smooth or rough dielectric coat (plastic); kd is
     // clamped to [0, 1] (the base-coat inter-reflection series needs kd < 1/F).
-    static Bsdf plastic(const Color& kd, float eta, float alpha);
+    // A rough coat lets through what `coat.rough` tabulates (made for the same
+    // eta and microfacet model); without tables, 1 - F of the smooth coat.
+    struct PlasticCoat {
+        MicrofacetModel microfacets;
+        bool nonlinear = true;  // kd inside the inter-reflection series (Mitsuba's "nonlinear")
+        const RoughCoat* rough = nullptr;
+    };
+    static Bsdf plastic(const Color& kd, float eta, float alpha, const PlasticCoat& coat);
+    static Bsdf plastic(const Color& kd, float eta, float alpha) {
+        return plastic(kd, eta, alpha, PlasticCoat{});
+    }
     // glTF 2.0 metallic-roughness: metallic blends a Schlick conductor with
     // F0 = base colour against a dielectric-coated diffuse with diffuse base
     // colour and Schlick F0 = ((eta - 1) / (eta + 1))^2. base, metallic and

@@ -14,6 +14,7 @@
 
 #include "strahl/bsdf/bsdf_sample.h"
 #include "strahl/bsdf/microfacet.h"
+#include "strahl/bsdf/rough_coat.h"
 
 namespace strahl::bsdf_models {
 
@@ -56,7 +57,7 @@ struct PhongModel {
     std::optional<BsdfSample> sample(const Vec3& wo, float uLobe, const Vec2& u) const;
 };
 
-// GGX conductor with exact complex Fresnel; a delta mirror when smooth.
+// Microfacet conductor with exact complex Fresnel; a delta mirror when smooth.
 struct ConductorModel {
     MicrofacetDistribution microfacets;
     Color eta, k;
@@ -82,17 +83,21 @@ struct DielectricModel {
     std::optional<BsdfSample> sample(const Vec3& wo, float uLobe, const Vec2& u) const;
 };
 
-// Lambertian base under a smooth (delta) or rough (GGX) dielectric coat.
+// Lambertian base under a smooth (delta) or rough (microfacet) dielectric coat.
 struct PlasticModel {
     MicrofacetDistribution microfacets;
     Color kd;
     float eta = 1.5f;
-    float internalReflectance = 0.0f;  // Fbar_dr seen from inside the coat
+    float internalReflectance = 0.0f;  // what the coat reflects back down from inside
+    bool nonlinear = true;             // the base's colour in the inter-reflection series
+    const RoughCoat* roughCoat = nullptr;  // tables of a rough coat (else 1 - F)
 
     static constexpr bool kOpaque = true;
     // A black base leaves only the coat's delta lobe when it is smooth.
     bool specular() const { return microfacets.smooth() && maxComponent(kd) == 0.0f; }
-    float specularProbability(float fresnelO) const;
+    // The fraction of light at cos(theta) from outside that passes the coat.
+    float coatTransmittance(float cosTheta) const;
+    float specularProbability(float coatTransmittanceO) const;
     Color diffuseF(const Vec3& wo, const Vec3& wi) const;
     Color f(const Vec3& wo, const Vec3& wi) const;
     float pdf(const Vec3& wo, const Vec3& wi) const;

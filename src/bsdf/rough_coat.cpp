@@ -1,0 +1,140 @@
+// Rough-interface albedos by Gauss-Legendre quadrature over the sampled
+// microfacet normals, and the plastic coat's tables. Derivation in
+// docs/materials.md, "Plastic".
+
+#include "strahl/bsdf/rough_coat.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "strahl/bsdf/fresnel.h"
+#include "strahl/bsdf/local_frame.h"
+#include "strahl/core/error.h"
+
+namespace strahl {
+
+namespace {
+
+struct Node {
+    double x, w;
+};
+
+// Gauss-Legendre nodes and weights on [0, 1]: the roots of P_n by Newton's
+// method from the Chebyshev estimates cos(pi (i + 3/4) / (n + 1/2)).
+std::vector<Node> gaussLegendre01(int n) {
+    std::vector<Node> nodes(n);
+    for (int i = 0; i < n; ++i) {
+        double x = std::cos(3.14159265358979323846 * (i + 0.75) / (n + 0.5)), dp = 1.0;
+        for (int iteration = 0; iteration < 100; ++iteration) {
+            double p0 = 1.0, p1 = x;  // P_0, P_1, then the recurrence up to P_n
+            for (int k = 2; k <= n; ++k) {
+                const double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
+                p0 = p1;
+                p1 = p2;
+            }
+            dp = n * (x * p1 - p0) / (x * x - 1.0);
+            const double step = p1 / dp;
+            x -= step;
+            if (std::abs(step) < 1e-15) break;
+        }
+        nodes[i] = {0.5 * (1.0 - x), 1.0 / ((1.0 - x * x) * dp * dp)};  // weight 2/.. halved
+    }
+    return nodes;
+}
+
+// Quadrature resolution: the transmittance from outside is smooth in the
+// sampling coordinates (32 x 32, Mitsuba's choice); from inside, total internal
+// reflection puts a kink in the integrand, which needs more points.
+constexpr int kOutsideNodes = 32;
+constexpr int kInsideNodes = 64;
+constexpr int kInsideCosines = 64;
+
+}  // namespace
+
+InterfaceAlbedo roughInterfaceAlbedo(const MicrofacetDistribution& dist, float cosTheta,
+                                     float eta, int nodes) {
+    const float mu = std::clamp(cosTheta, 1e-4f, 1.0f);
+    const Vec3 wo(std::sqrt(1.0f - mu * mu), 0.0f, mu);
+    // For wi = reflect or refract(wo, m) the lobes' albedos are integrals over m:
+    //   R = integral D(m) G(wo, wi) F(wo.m) |wo.m| / cos(theta_o) dm,
+    //   T = the same with 1 - F and wi refracted (the Jacobians of both maps
+    //       cancel against the lobes' denominators, docs/materials.md),
+    // and m is drawn with density normalPdf(wo, m).
+    const std::vector<Node> q = gaussLegendre01(nodes);
+    double r = 0.0, t = 0.0;
+    for (const Node& a : q) {
+        for (const Node& b : q) {
+            const Vec3 m = dist.sampleNormal(wo, Vec2(float(a.x), float(b.x)));
+            const float cosOm = glm::dot(wo, m);
+            const float pdf = dist.normalPdf(wo, m);
+            if (cosOm <= 0.0f || !(pdf > 0.0f)) continue;
+            const double weight = a.w * b.w * dist.d(m) * cosOm / (mu * pdf);
+            const float fresnel = fresnelDielectric(cosOm, eta);
+            const Vec3 reflected = reflectDir(wo, m);
+            if (reflected.z > 0.0f) r += weight * fresnel * dist.g(wo, reflected);
+            Vec3 refracted;
+            float etap;
+            if (fresnel < 1.0f && refractDir(wo, m, eta, refracted, etap) && refracted.z < 0.0f)
+                t += weight * (1.0f - fresnel) * dist.g(wo, refracted);
+        }
+    }
+    return {float(r), float(t)};
+}
+
+RoughCoat::RoughCoat(MicrofacetModel model, float eta, std::span<const float> alphas)
+    : eta_(eta), alphas_(alphas.begin(), alphas.end()) {
+    if (alphas_.empty() || !std::is_sorted(alphas_.begin(), alphas_.end()))
+        fail("rough coat: the roughness nodes must be given in increasing order");
+    const std::vector<Node> mus = gaussLegendre01(kInsideCosines);
+    for (const float alpha : alphas_) {
+        const MicrofacetDistribution dist(alpha, alpha, model);
+        if (dist.smooth()) {
+            for (int i = 0; i < kCosines; ++i)
+                transmittance_.push_back(1.0f - fresnelDielectric(float(i) / (kCosines - 1), eta));
+            internalReflectance_.push_back(fresnelDiffuseReflectance(1.0f / eta));
+            continue;
+        }
+        for (int i = 0; i < kCosines; ++i) {
+            const float mu = float(i) / (kCosines - 1);
+            transmittance_.push_back(roughInterfaceAlbedo(dist, mu, eta, kOutsideNodes).transmittance);
+        }
+        double inside = 0.0;
+        for (const Node& mu : mus) {
+            inside += mu.w * 2.0 * mu.x *
+                      roughInterfaceAlbedo(dist, float(mu.x), 1.0f / eta, kInsideNodes).reflectance;
+        }
+        internalReflectance_.push_back(float(inside));
+    }
+}
+
+RoughCoat::Bracket RoughCoat::bracket(float alpha) const {
+    const auto above = std::upper_bound(alphas_.begin(), alphas_.end(), alpha);
+    if (above == alphas_.begin()) return {0, 0, 0.0f};
+    if (above == alphas_.end()) {
+        const int last = int(alphas_.size()) - 1;
+        return {last, last, 0.0f};
+    }
+    const int hi = int(above - alphas_.begin()), lo = hi - 1;
+    return {lo, hi, (alpha - alphas_[lo]) / (alphas_[hi] - alphas_[lo])};
+}
+
+float RoughCoat::transmittance(float alpha, float cosTheta) const {
+    const Bracket b = bracket(alpha);
+    // Linear in cos(theta) between the table's evenly spaced entries.
+    const float x = std::clamp(cosTheta, 0.0f, 1.0f) * (kCosines - 1);
+    const int i = std::min(int(x), kCosines - 2);
+    const float f = x - float(i);
+    const auto row = [&](int a) {
+        const float* t = &transmittance_[size_t(a) * kCosines];
+        return t[i] + f * (t[i + 1] - t[i]);
+    };
+    return row(b.lo) + b.t * (row(b.hi) - row(b.lo));
+}
+
+float RoughCoat::internalReflectance(float alpha) const {
+    const Bracket b = bracket(alpha);
+    return internalReflectance_[b.lo] +
+           b.t * (internalReflectance_[b.hi] - internalReflectance_[b.lo]);
+}
+
+}  // namespace strahl
