@@ -11,7 +11,7 @@
 // a specular bounce have weight 1 (no light sample could have found them), as
 // have emitters that are not light-sampled (textured emission, user shapes).
 //
-// Russian roulette from the second bounce on: continue with probability
+// Russian roulette from bounce russianRouletteDepth (2) on: continue with probability
 // q = min(1, max(beta * etaScale)), dividing beta by q; etaScale undoes the
 // 1/eta^2 radiance scaling of refraction so paths inside glass are not killed
 // for it (pbrt-v4).
@@ -119,7 +119,8 @@ Color PathIntegrator::shade(const World& world, const SurfaceHit& first, Sampler
         hit = world.accel->intersect(ray);
         ++stats.bounceRays;
 
-        if (options_.russianRoulette && depth >= 1) {
+        // The BSDF sample just taken is bounce depth + 1.
+        if (options_.russianRoulette && depth + 1 >= options_.russianRouletteDepth) {
             const float q = std::min(1.0f, maxComponent(beta * etaScale));
             if (q < 1.0f) {
                 if (sampler.get1D() >= q) break;

@@ -9,6 +9,7 @@
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "mitsuba_named_materials.h"
 #include "spectrum_to_rgb.h"
 #include "strahl/core/error.h"
 
@@ -334,7 +335,132 @@ private:
             allowOnly(b, {"reflectance"});
             return {{"type", "diffuse"}, {"color", color(b, "reflectance", 0.5)}};
         }
+        const bool rough = b.type.rfind("rough", 0) == 0;
+        const std::string base = rough ? b.type.substr(5) : b.type;
+        if (base == "conductor") return conductor(b, rough);
+        if (base == "dielectric") return dielectric(b, rough);
+        if (base == "plastic") return plastic(b, rough);
         unsupported(b, "this BSDF is not supported yet (docs/mitsuba.md lists those that are)");
+    }
+
+    // Mitsuba's microfacet BSDFs: its `distribution` (beckmann by default),
+    // its `alpha` (or `alpha_u` and `alpha_v`; 0.1 by default) as strahl's
+    // roughness = sqrt(alpha), and its masking, the separable Smith product.
+    void microfacets(const Object& b, json& m, bool anisotropic) {
+        const std::string distribution = text(b, "distribution", "beckmann");
+        if (distribution != "beckmann" && distribution != "ggx")
+            fail(b.property("distribution")->place.text(), ": distribution must be beckmann or ggx");
+        m["distribution"] = distribution;
+        m["masking"] = "separable";
+        const auto roughness = [&](const std::string& name) {
+            for (const Child& c : b.children)
+                if (c.name == name) unsupported(*c.object, "a textured '" + name + "' is not supported");
+            const double alpha = number(b, name, 0.1);
+            if (!(alpha >= 0.0 && alpha <= 1.0))
+                fail(b.property(name)->place.text(), ": '", name, "' must be in [0, 1]");
+            return std::sqrt(alpha);
+        };
+        const bool u = b.property("alpha_u") != nullptr, v = b.property("alpha_v") != nullptr;
+        if (u != v || (u && b.property("alpha")))
+            unsupported(b, "give either alpha or both alpha_u and alpha_v");
+        if (!u) {
+            m["roughness"] = roughness("alpha");
+        } else if (!anisotropic) {
+            unsupported(b, "an anisotropic roughness (alpha_u, alpha_v) is only supported on conductors");
+        } else {
+            m["roughness_u"] = roughness("alpha_u");
+            m["roughness_v"] = roughness("alpha_v");
+        }
+    }
+
+    // An index of refraction: a number or one of Mitsuba's named materials.
+    double ior(const Object& b, const std::string& name, const std::string& fallback) {
+        const Property* p = b.property(name);
+        if (p && (p->tag == "float" || p->tag == "integer")) return number(b, name, 0.0);
+        const std::string given = text(b, name, fallback);
+        const std::optional<double> value = namedIor(given);
+        if (!value)
+            fail(p->place.text(), ": ", b.element(), ": unknown ", name, " '", given, "' (known: ",
+                 namedIorList(), ")");
+        return *value;
+    }
+
+    // The relative index int_ior / ext_ior, which strahl's dielectrics take in [1.0001, 4].
+    double relativeIor(const Object& b, const std::string& fallbackInside) {
+        const double eta = ior(b, "int_ior", fallbackInside) / ior(b, "ext_ior", "air");
+        if (!(eta >= 1.0001 && eta <= 4.0))
+            unsupported(b, "int_ior / ext_ior = " + std::to_string(eta) +
+                               ": strahl's interfaces need a relative index in [1.0001, 4] "
+                               "(denser inside)");
+        return eta;
+    }
+
+    // Mitsuba's optional specular tints: strahl renders them only when absent or 1.
+    void requireUntinted(const Object& b, std::initializer_list<const char*> names) {
+        for (const char* name : names) {
+            for (const Child& c : b.children)
+                if (c.name == name) unsupported(*c.object, std::string("a textured '") + name + "' is not supported");
+            if (b.property(name) && color(b, name, 1.0) != json(1.0))
+                unsupported(b, std::string("'") + name + "' other than 1 is not supported");
+        }
+    }
+
+    json conductor(const Object& b, bool rough) {
+        allowOnly(b, {"material", "eta", "k", "specular_reflectance", "distribution", "alpha",
+                      "alpha_u", "alpha_v"},
+                  {"sample_visible"});
+        if (!rough) allowOnly(b, {"material", "eta", "k", "specular_reflectance"});
+        requireUntinted(b, {"specular_reflectance"});
+        json m = {{"type", "conductor"}};
+        if (b.property("material") && (b.property("eta") || b.property("k")))
+            unsupported(b, "give either material or eta and k");
+        if (b.property("eta") || b.property("k")) {
+            m["eta"] = color(b, "eta", 0.0);
+            m["k"] = color(b, "k", 1.0);
+        } else {
+            const std::string name = text(b, "material", "none");
+            const std::optional<NamedConductor> c = namedConductor(name);
+            if (!c)
+                unsupported(b, "the conductor material '" + name +
+                                   "' is not available (docs/mitsuba.md lists those that are)");
+            m["eta"] = vec3(c->eta);
+            m["k"] = vec3(c->k);
+        }
+        if (rough) microfacets(b, m, true);
+        return m;
+    }
+
+    json dielectric(const Object& b, bool rough) {
+        allowOnly(b, {"int_ior", "ext_ior", "specular_reflectance", "specular_transmittance",
+                      "distribution", "alpha", "alpha_u", "alpha_v"},
+                  {"sample_visible"});
+        if (!rough)
+            allowOnly(b, {"int_ior", "ext_ior", "specular_reflectance", "specular_transmittance"});
+        requireUntinted(b, {"specular_reflectance", "specular_transmittance"});
+        json m = {{"type", "dielectric"}, {"ior", relativeIor(b, "bk7")}};
+        if (rough) microfacets(b, m, false);
+        return m;
+    }
+
+    // Mitsuba's plastic: the linear series by default (`nonlinear` false);
+    // the rough one lets through what its rough interface transmits.
+    json plastic(const Object& b, bool rough) {
+        allowOnly(b, {"diffuse_reflectance", "int_ior", "ext_ior", "nonlinear",
+                      "specular_reflectance", "distribution", "alpha"},
+                  {"sample_visible"});
+        if (!rough)
+            allowOnly(b, {"diffuse_reflectance", "int_ior", "ext_ior", "nonlinear",
+                          "specular_reflectance"});
+        requireUntinted(b, {"specular_reflectance"});
+        json m = {{"type", "plastic"},
+                  {"color", color(b, "diffuse_reflectance", 0.5)},
+                  {"ior", relativeIor(b, "polypropylene")},
+                  {"nonlinear", boolean(b, "nonlinear", false)}};
+        if (rough) {
+            microfacets(b, m, false);
+            m["coat_transmittance"] = "microfacet";
+        }
+        return m;
     }
 
     // --- shapes ------------------------------------------------------------
@@ -708,8 +834,9 @@ private:
             // light. strahl counts bounces: 0 sees emitters only.
             render_["integrator"] = "path";
             render_["max_depth"] = maxDepth == -1 ? 1024 : maxDepth - 1;
-            const int rr = integer(i, "rr_depth", 5);
-            render_["russian_roulette"] = maxDepth == -1 || rr < maxDepth;
+            // Both count bounces from 1 for the roulette: Mitsuba's depth is
+            // 1 after the first BSDF sample.
+            render_["russian_roulette_depth"] = std::clamp(integer(i, "rr_depth", 5), 1, 1024);
             return;
         }
         if (i.type == "direct") {

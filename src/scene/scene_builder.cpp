@@ -358,6 +358,7 @@ IntegratorOptions buildIntegratorOptions(const SceneDesc& desc, const Camera& ca
     IntegratorOptions options;
     options.maxDepth = desc.render.maxDepth;
     options.russianRoulette = desc.render.russianRoulette;
+    options.russianRouletteDepth = desc.render.russianRouletteDepth;
     options.clampDirect = desc.render.clampDirect;
     options.clampIndirect = desc.render.clampIndirect;
     options.aoDistance = desc.render.aoDistance;

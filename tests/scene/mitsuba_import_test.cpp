@@ -14,7 +14,10 @@
 #include "strahl/integrator/environment_light.h"
 #include "strahl/integrator/projector_light.h"
 #include "strahl/integrator/spot_light.h"
+#include "strahl/material/conductor.h"
+#include "strahl/material/dielectric.h"
 #include "strahl/material/diffuse.h"
+#include "strahl/material/plastic.h"
 #include "strahl/scene/scene_builder.h"
 #include "strahl/scene/scene_desc.h"
 #include "strahl/scene/scene_document.h"
@@ -111,6 +114,89 @@ TEST(MitsubaImport, MaxDepthCountsVerticesInMitsubaAndBouncesInStrahl) {
                 HasSubstr("max_depth must be -1 or at least 1"));
     const SceneDesc wrapped = parse(scene("", R"(<integrator type="moment"><integrator type="direct"/></integrator>)"));
     EXPECT_EQ(wrapped.render.integrator, "direct");
+}
+
+TEST(MitsubaImport, RrDepthIsTheBounceRouletteStartsAfter) {
+    const auto rrDepth = [](const std::string& integrator) {
+        return parse(scene("", integrator)).render.russianRouletteDepth;
+    };
+    EXPECT_EQ(rrDepth(R"(<integrator type="path"/>)"), 5);  // Mitsuba's default
+    EXPECT_EQ(rrDepth(R"(<integrator type="path"><integer name="rr_depth" value="2"/></integrator>)"), 2);
+    EXPECT_EQ(rrDepth(R"(<integrator type="path"><integer name="rr_depth" value="0"/></integrator>)"), 1);
+}
+
+// The material kind K of the cube's BSDF `bsdf` (the second material: the
+// rectangle's default comes first).
+template <typename K>
+K cubeMaterial(const std::string& bsdf) {
+    const SceneDesc d = parse(scene(R"(<shape type="cube">)" + bsdf + "</shape>"));
+    const K* kind = d.materials.size() == 2 ? std::get_if<K>(&d.materials[1].material.kind) : nullptr;
+    if (!kind) {
+        ADD_FAILURE() << "not the expected material kind: " << bsdf;
+        return K{};
+    }
+    return *kind;
+}
+
+TEST(MitsubaImport, ConductorsTakeMitsubasNamedMaterialsAndItsMicrofacetModel) {
+    // Default material "none": the lossless mirror eta 0, k 1.
+    const auto mirror = cubeMaterial<ConductorMaterial>(R"(<bsdf type="conductor"/>)");
+    EXPECT_EQ(mirror.eta, Color(0.0f));
+    EXPECT_EQ(mirror.k, Color(1.0f));
+    EXPECT_EQ(mirror.roughnessU.value, 0.0f);
+    // Aluminium as Mitsuba's RGB variants convert its measured spectra.
+    const auto al = cubeMaterial<ConductorMaterial>(R"(<bsdf type="roughconductor">
+        <string name="material" value="Al"/><string name="distribution" value="ggx"/>
+        <float name="alpha_u" value="0.25"/><float name="alpha_v" value="0.04"/></bsdf>)");
+    EXPECT_NEAR(al.eta.r, 1.6575f, 1e-4f);
+    EXPECT_NEAR(al.k.b, 4.837f, 1e-4f);
+    EXPECT_FLOAT_EQ(al.roughnessU.value, 0.5f);  // roughness = sqrt(alpha)
+    EXPECT_FLOAT_EQ(al.roughnessV.value, 0.2f);
+    EXPECT_EQ(al.microfacets.type, MicrofacetType::Ggx);
+    EXPECT_EQ(al.microfacets.masking, MicrofacetMasking::Separable);
+    // Mitsuba's defaults: Beckmann, alpha 0.1; eta and k given directly.
+    const auto given = cubeMaterial<ConductorMaterial>(R"(<bsdf type="roughconductor">
+        <spectrum name="eta" value="0.789"/><spectrum name="k" value="6.15"/></bsdf>)");
+    EXPECT_EQ(given.eta, Color(0.789f));
+    EXPECT_EQ(given.microfacets.type, MicrofacetType::Beckmann);
+    EXPECT_NEAR(given.roughnessU.value, std::sqrt(0.1f), 1e-6f);
+    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="conductor"><string name="material" value="K"/></bsdf></shape>)")),
+                HasSubstr("scene.xml:11: <bsdf type=\"conductor\">: the conductor material 'K' is not available"));
+    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="roughconductor"><float name="alpha_u" value="0.2"/></bsdf></shape>)")),
+                HasSubstr("give either alpha or both alpha_u and alpha_v"));
+    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="conductor"><rgb name="specular_reflectance" value="0.5"/></bsdf></shape>)")),
+                HasSubstr("'specular_reflectance' other than 1 is not supported"));
+}
+
+TEST(MitsubaImport, DielectricsAndPlasticsTakeTheRatioOfNamedIors) {
+    const auto diamond = cubeMaterial<DielectricMaterial>(R"(<bsdf type="dielectric">
+        <string name="int_ior" value="diamond"/><string name="ext_ior" value="air"/></bsdf>)");
+    EXPECT_FLOAT_EQ(diamond.ior, float(2.419 / 1.000277));
+    EXPECT_EQ(diamond.roughness.value, 0.0f);
+    const auto glass = cubeMaterial<DielectricMaterial>(R"(<bsdf type="roughdielectric">
+        <float name="alpha" value="0.04"/></bsdf>)");
+    EXPECT_FLOAT_EQ(glass.ior, float(1.5046 / 1.000277));  // bk7 in air
+    EXPECT_FLOAT_EQ(glass.roughness.value, 0.2f);
+    EXPECT_EQ(glass.microfacets.type, MicrofacetType::Beckmann);
+    const auto plastic = cubeMaterial<PlasticMaterial>(R"(<bsdf type="plastic">
+        <rgb name="diffuse_reflectance" value="0.1, 0.2, 0.3"/><float name="int_ior" value="1.9"/></bsdf>)");
+    EXPECT_EQ(plastic.color.value, Color(0.1f, 0.2f, 0.3f));
+    EXPECT_FLOAT_EQ(plastic.ior, float(1.9 / 1.000277));
+    EXPECT_FALSE(plastic.nonlinear);  // Mitsuba's default
+    EXPECT_EQ(plastic.roughCoat, nullptr);
+    const auto rough = cubeMaterial<PlasticMaterial>(R"(<bsdf type="roughplastic">
+        <string name="distribution" value="ggx"/><boolean name="nonlinear" value="true"/></bsdf>)");
+    EXPECT_FLOAT_EQ(rough.ior, float(1.49 / 1.000277));  // polypropylene
+    EXPECT_TRUE(rough.nonlinear);
+    EXPECT_TRUE(rough.microfacetCoat);
+    ASSERT_NE(rough.roughCoat, nullptr);  // tabulated for alpha 0.1
+    EXPECT_FLOAT_EQ(rough.roughCoat->eta(), rough.ior);
+    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="dielectric"><string name="int_ior" value="unobtainium"/></bsdf></shape>)")),
+                HasSubstr("unknown int_ior 'unobtainium' (known: vacuum, helium"));
+    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="dielectric"><string name="int_ior" value="air"/><string name="ext_ior" value="water"/></bsdf></shape>)")),
+                HasSubstr("strahl's interfaces need a relative index in [1.0001, 4]"));
+    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="roughdielectric"><float name="alpha_u" value="0.1"/><float name="alpha_v" value="0.2"/></bsdf></shape>)")),
+                HasSubstr("an anisotropic roughness (alpha_u, alpha_v) is only supported on conductors"));
 }
 
 TEST(MitsubaImport, TransformsApplyInTheOrderWritten) {

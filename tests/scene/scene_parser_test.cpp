@@ -418,8 +418,8 @@ TEST(SceneParser, UnknownKeysNameTheObjectAndTheAllowedKeys) {
               "exr_float, filter)");
     EXPECT_EQ(errorWith(R"("render": {"samples": 4})"),
               "scene.json: /render: unknown key 'samples' (allowed: integrator, spp, seed, "
-              "max_depth, russian_roulette, ao_distance, ao_samples, clamp_direct, "
-              "clamp_indirect)");
+              "max_depth, russian_roulette, russian_roulette_depth, ao_distance, ao_samples, "
+              "clamp_direct, clamp_indirect)");
     EXPECT_EQ(errorWith(R"("materials": [{"name": "a", "colour": 1}])"),
               "scene.json: /materials/0: unknown key 'colour' for a diffuse material (allowed: "
               "name, type, emission, two_sided, normal_map, mapping, color, diffuse)");

@@ -42,6 +42,7 @@ enum class LightSampling { Mis, BsdfOnly, LightOnly };
 struct IntegratorOptions {
     int maxDepth = 8;          // path: bounces; 0 shows emitters only
     bool russianRoulette = true;
+    int russianRouletteDepth = 2;  // path: roulette after this bounce and every later one
     // path: the largest channel of one sample's light after one reflection
     // (direct) or more (indirect); 0: not clamped (docs/scene-format.md#render).
     float clampDirect = 0.0f;

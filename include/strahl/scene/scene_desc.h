@@ -86,6 +86,7 @@ struct RenderDesc {
     uint64_t seed = 0;
     int maxDepth = 8;            // path
     bool russianRoulette = true; // path
+    int russianRouletteDepth = 2;  // path: the first bounce roulette may end a path after
     // path: Cycles-style sample clamping, biased and off (0) by default: the
     // light of one sample after one reflection (direct) or more (indirect) is
     // scaled down so its largest channel is at most this.
