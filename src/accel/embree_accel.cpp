@@ -15,6 +15,9 @@
 //    tfar/u/v/Ng/primID/geomID and instID on a hit and nothing on a miss, and
 //    set tfar = -inf for an occlusion. Shapes' intersect() is noexcept, so no
 //    exception can cross Embree.
+//  - A mesh with a Cutout gets it as its user data and one filter function
+//    for both intersection and occlusion, which rejects candidate hits on its
+//    holes (Embree then keeps traversing).
 //  - Vertex and index buffers are shared with Embree (zero copy) when the
 //    mesh's position vector has the spare element Embree's 16-byte vertex loads
 //    need (TriangleMesh::reservePadding); otherwise they are copied once into an
@@ -99,6 +102,21 @@ void userOccluded(const RTCOccludedFunctionNArguments* args) {
     }
 }
 
+// ---- cut-outs -------------------------------------------------------------------
+
+// Intersection and occlusion filter of a mesh with a Cutout (its user data):
+// a candidate hit on a hole is rejected (valid = 0), and Embree goes on
+// looking behind it.
+void cutoutFilter(const RTCFilterFunctionNArguments* args) {
+    const auto* cutout = static_cast<const Cutout*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        if (!cutout->solid(RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i),
+                           RTCHitN_v(args->hit, args->N, i)))
+            args->valid[i] = 0;
+    }
+}
+
 // ---- the accelerator -----------------------------------------------------------
 
 class EmbreeAccel final : public EmbreeSceneAccel {
@@ -144,10 +162,11 @@ private:
     // The Embree geometry of one shape, not yet committed or attached. `geomID`
     // only names the shape in errors.
     RTCGeometry newShapeGeometry(const ShapeRef& shape, unsigned geomID) {
-        return shape.mesh ? newMeshGeometry(*shape.mesh) : newUserGeometry(*shape.user, geomID);
+        return shape.mesh ? newMeshGeometry(*shape.mesh, shape.cutout)
+                          : newUserGeometry(*shape.user, geomID);
     }
 
-    RTCGeometry newMeshGeometry(const TriangleMesh& mesh) {
+    RTCGeometry newMeshGeometry(const TriangleMesh& mesh, const Cutout* cutout) {
         RTCGeometry geom = rtcNewGeometry(device(), RTC_GEOMETRY_TYPE_TRIANGLE);
         // The scene's quality picks its builder, the geometry's how the mesh's
         // own triangles are split: spatial splits (high) need both.
@@ -163,6 +182,11 @@ private:
         }
         rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                    mesh.indices.data(), 0, 3 * sizeof(uint32_t), nt);
+        if (cutout) {
+            rtcSetGeometryUserData(geom, const_cast<Cutout*>(cutout));
+            rtcSetGeometryIntersectFilterFunction(geom, &cutoutFilter);
+            rtcSetGeometryOccludedFilterFunction(geom, &cutoutFilter);
+        }
         return geom;
     }
 

@@ -44,10 +44,30 @@ std::vector<Node> gaussLegendre01(int n) {
 
 // Quadrature resolution: the transmittance from outside is smooth in the
 // sampling coordinates (32 x 32, Mitsuba's choice); from inside, total internal
-// reflection puts a kink in the integrand, which needs more points.
+// reflection puts a kink in the integrand, which needs more points (64 x 64
+// agrees with 128 x 128 to 1e-5 in the average).
 constexpr int kOutsideNodes = 32;
 constexpr int kInsideNodes = 64;
-constexpr int kInsideCosines = 64;
+
+// The table's i-th cosine, i / (kCosines - 1), kept off the horizon.
+float tableCosine(int i) {
+    return std::max(1e-6f, float(i) / float(RoughCoat::kCosines - 1));
+}
+
+// Mitsuba's rule for the internal reflectance: 2 x the plain mean of
+// R(mu) mu over the table's cosines. It counts the end points fully and so
+// sits about 1.5 % below the integral 2 int_0^1 R(mu) mu dmu (0.587 instead
+// of 0.596 for a smooth coat of index 1.5); kept, because this coat is
+// Mitsuba's roughplastic and should render as Mitsuba renders it.
+template <typename InsideReflectance>
+float internalReflectanceByMitsubasRule(InsideReflectance&& reflectance) {
+    double sum = 0.0;
+    for (int i = 0; i < RoughCoat::kCosines; ++i) {
+        const float mu = tableCosine(i);
+        sum += double(reflectance(mu)) * mu;
+    }
+    return float(2.0 * sum / RoughCoat::kCosines);
+}
 
 }  // namespace
 
@@ -85,25 +105,21 @@ RoughCoat::RoughCoat(MicrofacetModel model, float eta, std::span<const float> al
     : eta_(eta), alphas_(alphas.begin(), alphas.end()) {
     if (alphas_.empty() || !std::is_sorted(alphas_.begin(), alphas_.end()))
         fail("rough coat: the roughness nodes must be given in increasing order");
-    const std::vector<Node> mus = gaussLegendre01(kInsideCosines);
     for (const float alpha : alphas_) {
         const MicrofacetDistribution dist(alpha, alpha, model);
         if (dist.smooth()) {
             for (int i = 0; i < kCosines; ++i)
-                transmittance_.push_back(1.0f - fresnelDielectric(float(i) / (kCosines - 1), eta));
-            internalReflectance_.push_back(fresnelDiffuseReflectance(1.0f / eta));
+                transmittance_.push_back(1.0f - fresnelDielectric(tableCosine(i), eta));
+            internalReflectance_.push_back(internalReflectanceByMitsubasRule(
+                [&](float mu) { return fresnelDielectric(mu, 1.0f / eta); }));
             continue;
         }
-        for (int i = 0; i < kCosines; ++i) {
-            const float mu = float(i) / (kCosines - 1);
-            transmittance_.push_back(roughInterfaceAlbedo(dist, mu, eta, kOutsideNodes).transmittance);
-        }
-        double inside = 0.0;
-        for (const Node& mu : mus) {
-            inside += mu.w * 2.0 * mu.x *
-                      roughInterfaceAlbedo(dist, float(mu.x), 1.0f / eta, kInsideNodes).reflectance;
-        }
-        internalReflectance_.push_back(float(inside));
+        for (int i = 0; i < kCosines; ++i)
+            transmittance_.push_back(
+                roughInterfaceAlbedo(dist, tableCosine(i), eta, kOutsideNodes).transmittance);
+        internalReflectance_.push_back(internalReflectanceByMitsubasRule([&](float mu) {
+            return roughInterfaceAlbedo(dist, mu, 1.0f / eta, kInsideNodes).reflectance;
+        }));
     }
 }
 

@@ -56,6 +56,12 @@ Vec3 lookupNormalMap(const TextureRef& normalMap, const TextureMapping& mapping,
     return Vec3(lookup(normalMap, mapping, sp, textures));
 }
 
+float opacityAt(const Material& material, Vec2 uv, const TextureSystem* textures) {
+    ShadingPoint sp;
+    sp.uv = uv;
+    return evaluateFloat(material.opacity, material.mapping, sp, textures);
+}
+
 Color MaterialPoint::reflectance(const TexturedColor& c) const {
     const Color value = color(c);
     Color r;

@@ -11,6 +11,8 @@
 //    both require t < tfar), so of several hits at the same t the first in
 //    (geomID, primID) order wins: answers do not depend on anything but the
 //    input.
+//  - A triangle hit on a hole of its mesh's Cutout is skipped, as Embree's
+//    filter functions skip it.
 //  - Nothing is precomputed per triangle; the per-ray shear of the watertight
 //    test is computed once per query. That is the point of a baseline: its cost
 //    is exactly the textbook loop.
@@ -96,6 +98,11 @@ private:
         return mesh.positions[mesh.indices[3 * tri + corner]];
     }
 
+    // Whether a triangle hit is on the solid part of its mesh's cut-out.
+    static bool solid(const Cutout* cutout, size_t tri, const Hit& hit) {
+        return !cutout || cutout->solid(static_cast<uint32_t>(tri), hit.u, hit.v);
+    }
+
     // The nearest hit of `ray` on `shapes` closer than tfar, if any, replaces
     // `closest` (IDs included) and shrinks tfar.
     static void intersectShapes(const std::vector<ShapeRef>& shapes, const Ray& ray,
@@ -105,10 +112,14 @@ private:
             const auto geomID = static_cast<uint32_t>(geom);
             if (const TriangleMesh* mesh = shapes[geom].mesh) {
                 const size_t triangles = mesh->triangleCount();
+                const Cutout* cutout = shapes[geom].cutout;
                 for (size_t tri = 0; tri < triangles; ++tri) {
+                    Hit candidate;
                     if (intersectTriangleWatertight(rayInRaySpace, ray.tnear, tfar,
                                                     vertex(*mesh, tri, 0), vertex(*mesh, tri, 1),
-                                                    vertex(*mesh, tri, 2), closest)) {
+                                                    vertex(*mesh, tri, 2), candidate) &&
+                        solid(cutout, tri, candidate)) {
+                        closest = candidate;
                         tfar = closest.t;
                         closest.geomID = geomID;
                         closest.primID = static_cast<uint32_t>(tri);
@@ -139,10 +150,11 @@ private:
             if (const TriangleMesh* mesh = shape.mesh) {
                 const size_t triangles = mesh->triangleCount();
                 for (size_t tri = 0; tri < triangles; ++tri) {
-                    Hit unused;
+                    Hit candidate;
                     if (intersectTriangleWatertight(rayInRaySpace, ray.tnear, ray.tfar,
                                                     vertex(*mesh, tri, 0), vertex(*mesh, tri, 1),
-                                                    vertex(*mesh, tri, 2), unused))
+                                                    vertex(*mesh, tri, 2), candidate) &&
+                        solid(shape.cutout, tri, candidate))
                         return true;
                 }
             } else {

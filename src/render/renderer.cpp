@@ -173,6 +173,7 @@ RenderStats renderImage(const World& world, const Camera& camera, const Integrat
                                 renderTileSingle(ctx, generator, tiles[i], sample, sample + 1);
                                 break;
                         }
+                        world.rethrowCutoutError();
                         cameraRays += ctx.cameraRays;
                         shadowRays += ctx.stats.shadowRays;
                         bounceRays += ctx.stats.bounceRays;

@@ -15,8 +15,8 @@ namespace fs = std::filesystem;
 namespace {
 
 // The keys every material accepts; each kind adds its own (Kind::kKeys).
-constexpr std::array<std::string_view, 6> kCommonKeys = {"name", "type", "emission",
-                                                          "two_sided", "normal_map", "mapping"};
+constexpr std::array<std::string_view, 7> kCommonKeys = {
+    "name", "type", "emission", "two_sided", "normal_map", "mapping", "opacity"};
 
 fs::path textureFile(const JsonValue& v, const fs::path& folder) {
     return resolveExistingFile(folder, v, "texture file");
@@ -155,6 +155,15 @@ MaterialDesc parseMaterial(const JsonValue& m, const fs::path& folder) {
     if (auto twoSided = m.find("two_sided")) mat.twoSidedEmission = twoSided->boolean();
     if (auto normal = m.find("normal_map")) mat.normalMap.file = textureFile(*normal, folder);
     if (auto mapping = m.find("mapping")) mat.mapping = parseMapping(*mapping);
+    if (auto opacity = m.find("opacity")) {
+        parseTexturedFloat(*opacity, folder, 0.0f, 1.0f, mat.opacity);
+        if (mat.emits())
+            opacity->fail("an emitting material cannot have an opacity (cut-out emitters are "
+                          "not supported)");
+        if (mat.mapping.kind == TextureMapping::Kind::Triplanar && !mat.opacity.texture.file.empty())
+            opacity->fail("an opacity texture is read through the uvs: it cannot be mapped "
+                          "triplanar");
+    }
     if (mat.mapping.kind == TextureMapping::Kind::Triplanar)
         mat.forEachTexture([&](const TextureRef& texture, TextureEncoding) {
             if (texture.stTransform != Mat3(1.0f))

@@ -331,6 +331,19 @@ private:
             allowOnly(b, {});
             return bsdfMaterial(*inner->object);
         }
+        if (b.type == "mask") {
+            // Mitsuba's mask passes a ray through with probability 1 - opacity;
+            // strahl's opacity cuts the same holes out of the surface.
+            const Child* inner = child(b, "bsdf");
+            if (!inner) unsupported(b, "needs a nested <bsdf>");
+            allowOnly(b, {"opacity"});
+            json m = bsdfMaterial(*inner->object);
+            if (m.contains("opacity")) unsupported(b, "a mask inside a mask is not supported");
+            json opacity = color(b, "opacity", 0.5);
+            if (opacity.is_array()) unsupported(b, "the opacity must be one number or a texture");
+            m["opacity"] = opacity;
+            return m;
+        }
         if (b.type == "diffuse") {
             allowOnly(b, {"reflectance"});
             return {{"type", "diffuse"}, {"color", color(b, "reflectance", 0.5)}};

@@ -306,6 +306,7 @@ BuiltScene buildScene(const SceneDesc& desc, const BuildOptions& options, BuildT
 
     const auto bvhStart = Clock::now();
     if (options.bvhStarted) options.bvhStarted();
+    world.prepareCutouts();
     const AccelScene refs = world.accelScene();
     if (options.accel == AccelKind::Naive) {
         world.accel = buildNaiveAccel(refs);

@@ -71,7 +71,9 @@ TEST(RoughCoat, ANearlySmoothCoatHasTheSmoothInterfacesValues) {
                     2e-3f)
             << cosTheta;
     }
-    EXPECT_NEAR(coat.internalReflectance(0.002f), fresnelDiffuseReflectance(1.0f / 1.5f), 5e-3f);
+    // Mitsuba's rule for the average sits 1.5 % below the integral.
+    EXPECT_NEAR(coat.internalReflectance(0.002f), 0.985f * fresnelDiffuseReflectance(1.0f / 1.5f),
+                3e-3f);
 }
 
 TEST(RoughCoat, TexturedRoughnessInterpolatesBetweenNodes) {

@@ -40,7 +40,7 @@ TEST(MaterialKinds, KindNameOfAMaterial) {
 
 // How many textures each kind declares, plus the emission and the normal map
 // every material has.
-TEST(MaterialKinds, ForEachTextureVisitsTheKindsTexturesThenEmissionAndNormalMap) {
+TEST(MaterialKinds, ForEachTextureVisitsTheKindsTexturesThenOpacityEmissionAndNormalMap) {
     const std::vector<std::pair<MaterialKind, int>> cases = {
         {DiffuseMaterial{}, 1},    {PhongMaterial{}, 1},     {BlinnMaterial{}, 1},
         {ConductorMaterial{}, 2},  {DielectricMaterial{}, 2}, {PlasticMaterial{}, 2},
@@ -50,7 +50,8 @@ TEST(MaterialKinds, ForEachTextureVisitsTheKindsTexturesThenEmissionAndNormalMap
         m.kind = kind;
         std::vector<TextureEncoding> seen;
         m.forEachTexture([&](TextureRef&, TextureEncoding e) { seen.push_back(e); });
-        ASSERT_EQ(seen.size(), size_t(own + 2)) << kindName(kind);
+        ASSERT_EQ(seen.size(), size_t(own + 3)) << kindName(kind);
+        EXPECT_EQ(seen[seen.size() - 3], TextureEncoding::Data) << "opacity";
         EXPECT_EQ(seen[seen.size() - 2], TextureEncoding::Color) << "emission";
         EXPECT_EQ(seen.back(), TextureEncoding::Data) << "normal map";
     }

@@ -199,6 +199,20 @@ TEST(MitsubaImport, DielectricsAndPlasticsTakeTheRatioOfNamedIors) {
                 HasSubstr("an anisotropic roughness (alpha_u, alpha_v) is only supported on conductors"));
 }
 
+TEST(MitsubaImport, AMaskIsTheOpacityOfItsNestedBsdf) {
+    const SceneDesc d = parse(scene(R"(<shape type="cube"><bsdf type="mask">
+        <float name="opacity" value="0.25"/>
+        <bsdf type="twosided"><bsdf type="roughconductor"/></bsdf></bsdf></shape>)"));
+    ASSERT_EQ(d.materials.size(), 2u);
+    EXPECT_NE(std::get_if<ConductorMaterial>(&d.materials[1].material.kind), nullptr);
+    EXPECT_EQ(d.materials[1].material.opacity.value, 0.25f);
+    // Mitsuba's default opacity is 0.5.
+    const SceneDesc half = parse(scene(R"(<shape type="cube"><bsdf type="mask"><bsdf type="diffuse"/></bsdf></shape>)"));
+    EXPECT_EQ(half.materials[1].material.opacity.value, 0.5f);
+    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="mask"><rgb name="opacity" value="0.1, 0.2, 0.3"/><bsdf type="diffuse"/></bsdf></shape>)")),
+                HasSubstr("the opacity must be one number or a texture"));
+}
+
 TEST(MitsubaImport, TransformsApplyInTheOrderWritten) {
     const fs::path dir = test::scratchDir("mitsuba-transform");
     test::writeFile(dir / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");

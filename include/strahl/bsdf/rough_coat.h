@@ -29,14 +29,15 @@ public:
     // Tables at the given alphas (increasing; one for a constant roughness,
     // which is then exact, several for a textured one, interpolated linearly
     // between them). A smooth alpha (below kSmoothAlpha) takes the smooth
-    // interface's values, 1 - F and Fbar_int.
+    // interface's values, 1 - F and F's internal average by the same rule.
     RoughCoat(MicrofacetModel model, float eta, std::span<const float> alphas);
 
     float eta() const { return eta_; }
     // The fraction of light arriving at cos(theta) from outside that enters the coat.
     float transmittance(float alpha, float cosTheta) const;
-    // 2 integral_0^1 R_inside(mu) mu dmu: what the coat sends back down of
-    // the diffuse light that meets it from below.
+    // What the coat sends back down of the diffuse light that meets it from
+    // below, 2 integral_0^1 R_inside(mu) mu dmu, by Mitsuba's rule (a plain
+    // mean over the table's cosines, ~1.5 % below the integral; rough_coat.cpp).
     float internalReflectance(float alpha) const;
 
     // Resolution of the transmittance table in cos(theta), evenly spaced on [0, 1].

@@ -23,6 +23,7 @@
 
 #include "strahl/core/bounds.h"
 #include "strahl/core/ray.h"
+#include "strahl/geometry/cutout.h"
 #include "strahl/geometry/surface_interaction.h"
 #include "strahl/geometry/triangle_mesh.h"
 
@@ -59,11 +60,13 @@ public:
     virtual size_t memoryBytes() const = 0;
 };
 
-// One entry of the list an accelerator is built over: exactly one pointer is
-// set. Its position in the list is the geomID the accelerator reports.
+// One entry of the list an accelerator is built over: exactly one of mesh and
+// user is set. Its position in the list is the geomID the accelerator
+// reports. A mesh may have a cut-out (null: solid everywhere).
 struct ShapeRef {
     const TriangleMesh* mesh = nullptr;
     const UserShape* user = nullptr;
+    const Cutout* cutout = nullptr;
 
     Bounds3 bounds() const { return mesh ? mesh->bounds() : user->bounds(); }
 };

@@ -3,7 +3,10 @@
 // material bindings, lights, the background and the accelerator over the shapes.
 // Built once by the scene module, then read-only and shared by all threads.
 
+#include <atomic>
+#include <exception>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -30,9 +33,27 @@ struct SceneShape {
     // materialOfSlot[interaction.materialSlot] indexes World::materials; shapes
     // without face materials use materialOfSlot[0].
     std::vector<uint32_t> materialOfSlot;
+    // The alpha cut-out of a mesh whose materials have an opacity (set by
+    // World::prepareCutouts), null otherwise.
+    std::shared_ptr<const Cutout> cutout;
 
     bool isMesh() const { return user == nullptr; }
-    ShapeRef ref() const { return user ? ShapeRef{nullptr, user.get()} : ShapeRef{&mesh, nullptr}; }
+    ShapeRef ref() const {
+        return user ? ShapeRef{nullptr, user.get(), nullptr} : ShapeRef{&mesh, nullptr, cutout.get()};
+    }
+};
+
+// The first error a cut-out met inside the accelerator (a texture lookup
+// that failed), which cannot throw there: kept, and rethrown by the renderer.
+class CutoutErrors {
+public:
+    void record(std::exception_ptr error) noexcept;
+    void rethrow() const;  // the recorded error, if any
+
+private:
+    mutable std::mutex mutex_;
+    std::atomic<bool> failed_{false};
+    std::exception_ptr first_;
 };
 
 // Shapes stored once and placed any number of times by instances (a group of
@@ -72,6 +93,14 @@ struct World {
     LightSet lightSet;
 
     void prepareLights();
+    // Gives every mesh whose materials have an opacity its Cutout; call once
+    // shapes, materials and textures are final and before `accel` is built.
+    // Throws strahl::Error for a user shape with such a material, or a
+    // textured opacity on a mesh without texture coordinates.
+    void prepareCutouts();
+    // Throws the first error a cut-out met while tracing, if any (call after
+    // ray queries, outside the accelerator).
+    void rethrowCutoutError() const;
     bool lightsPrepared() const { return lightsPrepared_; }
     // The lightSet index of the emissive triangle a valid hit lies on, or
     // kInvalidId if it is not an area light (no emission, emission mapped
@@ -113,6 +142,7 @@ private:
     std::unordered_map<uint64_t, uint32_t> emitterOffset_;
     std::vector<uint32_t> areaLightOfPrim_;
     bool lightsPrepared_ = false;
+    std::unique_ptr<CutoutErrors> cutoutErrors_;
 };
 
 }  // namespace strahl

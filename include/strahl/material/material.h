@@ -22,6 +22,9 @@ struct Material {
     bool twoSidedEmission = false;  // otherwise only the front (Ng) side emits
     TextureRef normalMap;
     TextureMapping mapping;
+    // Alpha cut-out: 1 solid, 0 a hole, between a stochastic opacity, read
+    // through the uvs at footprint 0 (docs/materials.md, "Opacity").
+    TexturedFloat opacity{1.0f, {}, 0};
 
     // A Lambertian material (what tests and benchmarks mostly need).
     static Material diffuse(std::string name, const Color& reflectance,
@@ -33,12 +36,16 @@ struct Material {
     bool hasUniformEmission() const {
         return emits() && !emission.texture.valid() && !emission.checkerboard;
     }
+    // Whether some of the surface may be a hole.
+    bool cutsOut() const { return opacity.value < 1.0f || !opacity.texture.file.empty(); }
 
     // Calls fn(TextureRef&, TextureEncoding) for every texture the material
-    // can use, bound or not: the kind's, then the emission's and the normal map.
+    // can use, bound or not: the kind's, the opacity's, then the emission's
+    // and the normal map.
     template <typename Fn>
     void forEachTexture(Fn&& fn) {
         std::visit([&](auto& k) { k.forEachTexture(fn); }, kind);
+        fn(opacity.texture, TextureEncoding::Data);
         fn(emission.texture, TextureEncoding::Color);
         fn(normalMap, TextureEncoding::Data);
     }
@@ -49,6 +56,8 @@ Bsdf makeBsdf(const Material& material, const ShadingPoint& sp, const TextureSys
 // The emitted radiance at sp (before the one-sided test).
 Color emittedRadiance(const Material& material, const ShadingPoint& sp,
                       const TextureSystem* textures);
+// The opacity at texture coordinates uv (footprint 0), not clamped.
+float opacityAt(const Material& material, Vec2 uv, const TextureSystem* textures);
 // The shading normal after the material's normal map (sp.n without one).
 Vec3 shadingNormal(const Material& material, const ShadingPoint& sp,
                    const TextureSystem* textures);
