@@ -1,9 +1,9 @@
 // Alpha cut-outs from material opacity (docs/materials.md, "Opacity"): the
 // Cutout of a mesh whose materials have an opacity, and World::prepareCutouts.
 //
-// The decision at a hit: opacity o read at the hit's uv, footprint 0 (what
-// light sampling and the accelerators must agree on); o >= 1 is solid, o <= 0
-// (or NaN) a hole, and in between the hit is solid when a hash of the hit
+// The decision at a hit: opacity o read at the hit's uv, footprint 0. With a
+// cutoff c, solid where o >= c. Otherwise o >= 1 is solid, o <= 0 (or NaN) a
+// hole, and in between the hit is solid when a hash of the hit
 // (triangle and barycentrics, bit for bit) falls below o. The hash is a fixed
 // function of the point, not a random stream, so every tracer, thread and
 // tile order sees the same surface; as hits land on continuous (u, v), the
@@ -43,6 +43,7 @@ public:
             const Material& material = materials_[materialOfSlot_[slot]];
             if (!material.cutsOut()) return true;
             const float opacity = opacityAt(material, uvAt(prim, u, v), textures_);
+            if (material.opacityCutoff >= 0.0f) return opacity >= material.opacityCutoff;
             if (opacity >= 1.0f) return true;
             if (!(opacity > 0.0f)) return false;
             const uint64_t key = (uint64_t(std::bit_cast<uint32_t>(u)) << 32) |

@@ -57,15 +57,19 @@ void GltfReader::convertMaterials(std::vector<MeshMaterial>& out) {
         MeshMaterial m = gltfDefaults();
         m.name = g.name;
         m.diffuse = color(pbr.baseColorFactor, 4, place, "pbrMetallicRoughness.baseColorFactor");
-        const double alpha = pbr.baseColorFactor[3];
-        // The factor's alpha as the dissolve; texture alpha has no field.
-        if (g.alphaMode == "BLEND")
-            m.dissolve = factor(alpha, place, "baseColorFactor alpha");
-        else if (g.alphaMode == "MASK")
-            m.dissolve = alpha >= g.alphaCutoff ? 1.0f : 0.0f;
-        if (g.alphaMode != "OPAQUE" && pbr.baseColorTexture.index >= 0)
-            warnOnce("alpha", "the alpha of base colour textures is ignored (alphaMode " +
-                                  g.alphaMode + ")");
+        // Alpha (glTF 2.0 3.9.4): OPAQUE ignores it; MASK cuts out where the
+        // base colour's alpha (factor times texture) is below alphaCutoff;
+        // BLEND is rendered as a stochastic opacity.
+        if (g.alphaMode == "MASK" || g.alphaMode == "BLEND") {
+            m.dissolve = factor(pbr.baseColorFactor[3], place, "baseColorFactor alpha");
+            m.opacityTexture = texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+                                       place + "pbrMetallicRoughness.baseColorTexture");
+        }
+        if (g.alphaMode == "MASK") {
+            if (!(g.alphaCutoff >= 0.0 && g.alphaCutoff <= 1.0))
+                error(place, "alphaCutoff ", g.alphaCutoff, " is not in [0, 1]");
+            m.opacityCutoff = float(g.alphaCutoff);
+        }
         m.metallic = factor(pbr.metallicFactor, place, "pbrMetallicRoughness.metallicFactor");
         m.roughness = factor(pbr.roughnessFactor, place, "pbrMetallicRoughness.roughnessFactor");
         const double strength = extensionNumber(g.extensions, "KHR_materials_emissive_strength",
@@ -100,6 +104,13 @@ void GltfReader::convertMaterials(std::vector<MeshMaterial>& out) {
         const auto transmission = g.extensions.find("KHR_materials_transmission");
         if (transmission != g.extensions.end() && transmission->second.Has("transmissionTexture"))
             warnOnce("transmission texture", "transmissionTexture is ignored");
+        if (g.alphaMode != "OPAQUE" && (maxComponent(m.emission) > 0.0f || !m.emissionTexture.empty())) {
+            warnOnce("emissive alpha", "the alpha of emitting materials is ignored (cut-out "
+                                       "emitters are not supported)");
+            m.dissolve = 1.0f;
+            m.opacityTexture.clear();
+            m.opacityCutoff = -1.0f;
+        }
         out.push_back(std::move(m));
     }
 }

@@ -125,6 +125,13 @@ Material fromGltf(const MeshMaterial& m, const std::string& name, World& world) 
         mat.kind = mr;
     }
     setEmissionAndNormalMap(m, name, world, mat);
+    // glTF alpha (the reader drops it on emitting materials).
+    if (!m.opacityTexture.empty() || m.dissolve < 1.0f || m.opacityCutoff >= 0.0f) {
+        mat.opacity.value = m.dissolve;
+        mat.opacity.channel = 3;  // the base colour's alpha (1 where the image has none)
+        bindTexture(world, m.opacityTexture, TextureEncoding::Data, name, mat.opacity.texture);
+        mat.opacityCutoff = m.opacityCutoff;
+    }
     return mat;
 }
 

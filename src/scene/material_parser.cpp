@@ -15,8 +15,8 @@ namespace fs = std::filesystem;
 namespace {
 
 // The keys every material accepts; each kind adds its own (Kind::kKeys).
-constexpr std::array<std::string_view, 7> kCommonKeys = {
-    "name", "type", "emission", "two_sided", "normal_map", "mapping", "opacity"};
+constexpr std::array<std::string_view, 8> kCommonKeys = {
+    "name", "type", "emission", "two_sided", "normal_map", "mapping", "opacity", "opacity_cutoff"};
 
 fs::path textureFile(const JsonValue& v, const fs::path& folder) {
     return resolveExistingFile(folder, v, "texture file");
@@ -163,6 +163,10 @@ MaterialDesc parseMaterial(const JsonValue& m, const fs::path& folder) {
         if (mat.mapping.kind == TextureMapping::Kind::Triplanar && !mat.opacity.texture.file.empty())
             opacity->fail("an opacity texture is read through the uvs: it cannot be mapped "
                           "triplanar");
+    }
+    if (auto cutoff = m.find("opacity_cutoff")) {
+        if (!m.has("opacity")) cutoff->fail("needs an 'opacity' to threshold");
+        mat.opacityCutoff = cutoff->numberIn(0.0f, 1.0f);
     }
     if (mat.mapping.kind == TextureMapping::Kind::Triplanar)
         mat.forEachTexture([&](const TextureRef& texture, TextureEncoding) {

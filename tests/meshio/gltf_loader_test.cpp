@@ -202,6 +202,33 @@ TEST(GltfLoader, SingleTriangleWithDataUriBufferAndPbrMaterial) {
     EXPECT_TRUE(g.normalTexture.empty());
 }
 
+// The triangle with one material of alphaMode `mode` (and `extra` material keys).
+MeshMaterial alphaMaterial(const std::string& mode, const std::string& extra = "") {
+    const LoadedMesh m = loadText("gltf-alpha", triangleGltf(R"(,
+        "materials": [{"alphaMode": ")" + mode + R"(", "pbrMetallicRoughness":
+                       {"baseColorFactor": [1, 1, 1, 0.4]})" + extra + "}]",
+                                                             R"(, "material": 0)"));
+    return m.materials.at(0);
+}
+
+TEST(GltfLoader, AlphaModesBecomeAnOpacityOrACutoff) {
+    const MeshMaterial opaque = alphaMaterial("OPAQUE");
+    EXPECT_EQ(opaque.dissolve, 1.0f);  // OPAQUE ignores alpha
+    EXPECT_LT(opaque.opacityCutoff, 0.0f);
+    const MeshMaterial blend = alphaMaterial("BLEND");
+    EXPECT_FLOAT_EQ(blend.dissolve, 0.4f);  // a stochastic opacity
+    EXPECT_LT(blend.opacityCutoff, 0.0f);
+    const MeshMaterial mask = alphaMaterial("MASK", R"(, "alphaCutoff": 0.3)");
+    EXPECT_FLOAT_EQ(mask.dissolve, 0.4f);
+    EXPECT_FLOAT_EQ(mask.opacityCutoff, 0.3f);
+    EXPECT_FLOAT_EQ(alphaMaterial("MASK").opacityCutoff, 0.5f);  // glTF's default cutoff
+    // Emitters keep no alpha (cut-out emitters are not supported), with a warning.
+    WarningCapture warnings;
+    const MeshMaterial lamp = alphaMaterial("BLEND", R"(, "emissiveFactor": [1, 1, 1])");
+    EXPECT_EQ(lamp.dissolve, 1.0f);
+    EXPECT_THAT(warnings.text(), HasSubstr("the alpha of emitting materials is ignored"));
+}
+
 TEST(GltfLoader, PrimitiveWithoutMaterialGetsTheGltfDefaultMaterial) {
     WarningCapture warnings;
     const LoadedMesh m = loadText("gltf-default-material", triangleGltf());

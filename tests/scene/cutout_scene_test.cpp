@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "../../src/scene/material_builder.h"  // internal to the scene module
 #include "strahl/core/error.h"
 #include "strahl/scene/scene_builder.h"
 #include "strahl/scene/scene_desc.h"
@@ -99,6 +100,26 @@ TEST(CutoutScene, AnOpacityTextureCutsWhereItIsZero) {
     const World naive = world(text, dir / "scene.json", AccelKind::Naive);
     EXPECT_EQ(throughFraction(naive, 0.0f, 0.5f), 1.0);
     EXPECT_EQ(throughFraction(naive, 0.5f, 1.0f), 0.0);
+}
+
+TEST(CutoutScene, GltfAlphaBecomesTheBaseColoursAlphaAsOpacity) {
+    World w;
+    MeshMaterial mask;
+    mask.source = MeshMaterial::Source::Gltf;
+    mask.dissolve = 0.4f;
+    mask.opacityCutoff = 0.5f;
+    const Material cut = scene_detail::buildMeshMaterial(mask, "leaf", w);
+    EXPECT_TRUE(cut.cutsOut());
+    EXPECT_EQ(cut.opacity.value, 0.4f);
+    EXPECT_EQ(cut.opacity.channel, 3);  // alpha
+    EXPECT_EQ(cut.opacityCutoff, 0.5f);
+    MeshMaterial opaque;
+    opaque.source = MeshMaterial::Source::Gltf;
+    EXPECT_FALSE(scene_detail::buildMeshMaterial(opaque, "wall", w).cutsOut());
+    // A cutoff makes the opacity a threshold: 0.4 < 0.5 is a hole everywhere.
+    const std::string text = scene(R"({"name": "leaf", "opacity": 0.4, "opacity_cutoff": 0.5})");
+    EXPECT_EQ(throughFraction(world(text), 0, 1), 1.0);
+    EXPECT_EQ(throughFraction(world(scene(R"({"name": "leaf", "opacity": 0.6, "opacity_cutoff": 0.5})")), 0, 1), 0.0);
 }
 
 TEST(CutoutScene, WhatCannotBeCutOutIsOneClearError) {

@@ -67,7 +67,7 @@ TEST(ShadingInput, UnknownMaterialTypeListsTheTypes) {
 TEST(ShadingInput, KeyOfAnotherTypeListsTheAllowedKeys) {
     EXPECT_EQ(materialError(R"({"name": "m", "type": "conductor", "color": [1, 0.8, 0.3]})"),
               "scene.json: /materials/0: unknown key 'color' for a conductor material (allowed: "
-              "name, type, emission, two_sided, normal_map, mapping, opacity, metal, eta, k, roughness, "
+              "name, type, emission, two_sided, normal_map, mapping, opacity, opacity_cutoff, metal, eta, k, roughness, "
               "roughness_u, roughness_v, distribution, masking)");
 }
 

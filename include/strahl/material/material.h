@@ -25,6 +25,9 @@ struct Material {
     // Alpha cut-out: 1 solid, 0 a hole, between a stochastic opacity, read
     // through the uvs at footprint 0 (docs/materials.md, "Opacity").
     TexturedFloat opacity{1.0f, {}, 0};
+    // When in [0, 1]: the opacity is a threshold instead, solid where it is
+    // at least this and a hole elsewhere (glTF's alphaMode MASK).
+    float opacityCutoff = -1.0f;
 
     // A Lambertian material (what tests and benchmarks mostly need).
     static Material diffuse(std::string name, const Color& reflectance,

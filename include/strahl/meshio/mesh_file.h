@@ -28,7 +28,8 @@ struct MeshMaterial {
     Color specular{0.0f};    // OBJ Ks
     float shininess = 0.0f;  // OBJ Ns (Phong exponent)
     float ior = 1.5f;        // OBJ Ni; glTF KHR_materials_ior
-    float dissolve = 1.0f;   // OBJ d (or 1 - Tr): 1 opaque
+    float dissolve = 1.0f;   // OBJ d (or 1 - Tr): 1 opaque; glTF baseColorFactor alpha
+                             // (alphaMode MASK or BLEND, else 1)
     int illum = 2;           // OBJ illumination model (5, 7: mirror; 4, 6, 7, 9: glass)
     Color transmission{0.0f};  // OBJ Tf; glTF KHR_materials_transmission factor (grey)
     float metallic = 1.0f;   // glTF metallicFactor
@@ -38,6 +39,10 @@ struct MeshMaterial {
     std::filesystem::path normalTexture;     // OBJ norm (not map_Bump/bump); glTF normalTexture
     std::filesystem::path metallicRoughnessTexture;  // glTF (B: metallic, G: roughness)
     std::filesystem::path emissionTexture;   // OBJ map_Ke; glTF emissiveTexture
+    // glTF alphaMode MASK or BLEND: the base colour texture, whose alpha
+    // times `dissolve` is the opacity; MASK's alphaCutoff (else negative).
+    std::filesystem::path opacityTexture;
+    float opacityCutoff = -1.0f;
 };
 
 struct LoadedMesh {
