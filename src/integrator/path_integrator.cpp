@@ -108,7 +108,7 @@ Color PathIntegrator::shade(const World& world, const SurfaceHit& first, Sampler
         // Reflection must stay on wo's side of the geometry, transmission cross it.
         const bool sameSide = glm::dot(wi, ctx.ng) * glm::dot(ctx.wo, ctx.ng) > 0.0f;
         if (sameSide == bs->transmission) break;
-        beta *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
+        beta *= bs->f * (std::abs(bs->wi.z) * ctx.terminatorShadowing(wi) / bs->pdf);
         if (!isFinite(beta) || maxComponent(beta) <= 0.0f) break;
         specularBounce = bs->specular;
         prevBsdfPdf = bs->pdf;

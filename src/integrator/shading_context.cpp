@@ -7,7 +7,15 @@ namespace strahl {
 Color ShadingContext::fCos(const Vec3& wi) const {
     if (bsdf.isOpaque() && glm::dot(wi, ng) <= 0.0f) return Color(0.0f);
     const Vec3 wiLocal = toLocal(wi);
-    return bsdf.f(toLocal(wo), wiLocal) * std::abs(wiLocal.z);
+    return bsdf.f(toLocal(wo), wiLocal) * (std::abs(wiLocal.z) * terminatorShadowing(wi));
+}
+
+float ShadingContext::terminatorShadowing(const Vec3& wi) const {
+    if (terminatorAlpha2 <= 0.0f) return 1.0f;
+    const float c = glm::dot(wi, unmappedNormal);
+    if (c <= 0.0f) return 0.0f;
+    const float tan2 = (1.0f - c * c) / (c * c);
+    return 2.0f / (1.0f + std::sqrt(1.0f + terminatorAlpha2 * tan2));
 }
 
 ShadingContext makeShadingContext(const World& world, const SurfaceHit& hit, float footprint) {
@@ -40,6 +48,16 @@ ShadingContext makeShadingContext(const World& world, const SurfaceHit& hit, flo
     }
     ctx.ng = ng;
     ctx.n = n;
+    if (ctx.material->normalMapShadowing && ctx.material->normalMap.valid()) {
+        // The tilt the map gives the normal acts as a microfacet roughness:
+        // alpha^2 = tan^2(tilt) / 8, at most 1 (Chiang et al. 2019).
+        Vec3 unmapped = glm::normalize(si.Ns);
+        if (glm::dot(unmapped, ng) < 0.0f) unmapped = -unmapped;
+        const float c = std::clamp(glm::dot(unmapped, n), -1.0f, 1.0f);
+        const float tan2 = (1.0f - c * c) / std::max(c * c, 1e-12f);
+        ctx.unmappedNormal = unmapped;
+        ctx.terminatorAlpha2 = std::min(0.125f * tan2, 1.0f);
+    }
     // The frame's first axis follows dpdu (anisotropy, consistent texture
     // frames); Gram-Schmidt against n, any basis if dpdu is missing.
     const Vec3 tangent = si.dpdu - glm::dot(si.dpdu, n) * n;

@@ -23,6 +23,10 @@ struct ShadingContext {
     Vec3 ng{0.0f};  // unit geometric normal (oriented, see above)
     Vec3 s{0.0f}, t{0.0f}, n{0.0f};  // shading frame, n = shading normal
     Bsdf bsdf;
+    // A normal map's terminator shadowing (material.normalMapShadowing):
+    // alpha^2 of the tilt, 0 for none, and the normal before the map.
+    float terminatorAlpha2 = 0.0f;
+    Vec3 unmappedNormal{0.0f};
 
     Vec3 toLocal(const Vec3& v) const { return Vec3(glm::dot(v, s), glm::dot(v, t), glm::dot(v, n)); }
     Vec3 toWorld(const Vec3& v) const { return v.x * s + v.y * t + v.z * n; }
@@ -30,6 +34,11 @@ struct ShadingContext {
     // geometry puts wi on the other side than wo (light leaks through
     // interpolated normals).
     Color fCos(const Vec3& wi) const;
+    // The factor the normal map's shadowing puts on light from wi (1 without):
+    // the GGX Smith G1 of wi about the unmapped normal, with alpha^2 =
+    // min(1, tan^2(tilt) / 8) (Chiang, Li & Burley 2019, "Taming the Shadow
+    // Terminator"). fCos includes it; a BSDF sample's weight must take it too.
+    float terminatorShadowing(const Vec3& wi) const;
     float pdf(const Vec3& wi) const { return bsdf.pdf(toLocal(wo), toLocal(wi)); }
     // A ray leaving the surface in direction wi, offset past the error bound.
     Ray spawn(const Vec3& wi) const { return spawnRay(si->p, si->pError, ng, wi); }

@@ -153,7 +153,18 @@ MaterialDesc parseMaterial(const JsonValue& m, const fs::path& folder) {
     });
     if (auto emission = m.find("emission")) parseTexturedColor(*emission, folder, mat.emission);
     if (auto twoSided = m.find("two_sided")) mat.twoSidedEmission = twoSided->boolean();
-    if (auto normal = m.find("normal_map")) mat.normalMap.file = textureFile(*normal, folder);
+    if (auto normal = m.find("normal_map")) {
+        // A file name, or {"texture": file, "shadowing": bool, sampling keys}.
+        if (normal->raw().is_object()) {
+            requireTextureKeys(*normal, {"texture", "shadowing"});
+            mat.normalMap.file = textureFile(normal->get("texture"), folder);
+            parseTextureSampling(*normal, mat.normalMap);
+            if (auto shadowing = normal->find("shadowing"))
+                mat.normalMapShadowing = shadowing->boolean();
+        } else {
+            mat.normalMap.file = textureFile(*normal, folder);
+        }
+    }
     if (auto mapping = m.find("mapping")) mat.mapping = parseMapping(*mapping);
     if (auto opacity = m.find("opacity")) {
         parseTexturedFloat(*opacity, folder, 0.0f, 1.0f, mat.opacity);

@@ -256,12 +256,15 @@ private:
         return pairs;
     }
 
-    json texture(const Object& t) {
+    // A bitmap or checkerboard as a strahl texture object. `raw` (no sRGB
+    // decoding) is accepted where strahl reads the texture as data anyway
+    // (normal maps).
+    json texture(const Object& t, bool rawAllowed = false) {
         if (t.type == "checkerboard") return checkerboard(t);
         if (t.type != "bitmap")
             unsupported(t, "only bitmap and checkerboard textures are supported (not '" + t.type + "')");
         allowOnly(t, {"filename", "raw", "filter_type", "wrap_mode", "to_uv"}, {"format"});
-        if (boolean(t, "raw", false))
+        if (boolean(t, "raw", false) && !rawAllowed)
             unsupported(t, "raw (no sRGB decoding of 8-bit images) is not supported yet");
         // Mitsuba reads a bitmap at the point, without MIP levels: strahl's
         // bilinear or nearest filter, not its default footprint filter.
@@ -330,6 +333,32 @@ private:
             if (!inner) unsupported(b, "needs a nested <bsdf>");
             allowOnly(b, {});
             return bsdfMaterial(*inner->object);
+        }
+        if (b.type == "normalmap") {
+            // Mitsuba's tangent-space normal map, n = 2 texel - 1 in the frame
+            // of dp/du: strahl's normal_map. A raw bitmap is read as data; a
+            // rawconstant (0.5, 0.5, 1) is the identity.
+            const Child* inner = child(b, "bsdf");
+            if (!inner) unsupported(b, "needs a nested <bsdf>");
+            allowOnly(b, {"normalmap"});
+            json m = bsdfMaterial(*inner->object);
+            const Child* map = nullptr;
+            for (const Child& c : b.children)
+                if (c.object->tag == "texture") map = &c;
+            if (!map) unsupported(b, "needs a <texture name=\"normalmap\">");
+            const Object& t = *map->object;
+            if (t.type == "rawconstant") {
+                allowOnly(t, {"value"});
+                if (vec(t, "value", {0.5, 0.5, 1.0}) != glm::dvec3(0.5, 0.5, 1.0))
+                    unsupported(t, "a constant normal map other than the identity (0.5, 0.5, 1) is not supported");
+                return m;
+            }
+            if (t.type != "bitmap" || !boolean(t, "raw", false))
+                unsupported(t, "a normal map must be a bitmap with raw = true");
+            json normalMap = texture(t, /*rawAllowed=*/true);
+            normalMap["shadowing"] = true;  // Mitsuba's normalmap shadows the terminator
+            m["normal_map"] = normalMap;
+            return m;
         }
         if (b.type == "mask") {
             // Mitsuba's mask passes a ray through with probability 1 - opacity;

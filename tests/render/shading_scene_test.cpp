@@ -92,6 +92,41 @@ TEST(EnvironmentLight, ConstantMapLightsLikeTheSkyAndScales) {
     expectColorNear(mean, Color(0.8f), 0.02f);
 }
 
+TEST(NormalMap, TerminatorShadowingScalesTheLightByTheSmithTermOfTheTilt) {
+    // A uniform normal map tilting the floor's normal 30 degrees towards +x
+    // (dp/du), lit by a directional light 70 degrees from the vertical on
+    // that side: the shadowing multiplies the light by
+    // G = 2 / (1 + sqrt(1 + a^2 tan^2 70)), a^2 = tan^2 30 / 8 (Chiang et al. 2019).
+    const fs::path dir = test::scratchDir("normal-map-shadowing");
+    const float tilt = glm::radians(30.0f), light = glm::radians(70.0f);
+    {
+        auto out = OIIO::ImageOutput::create((dir / "tilt.exr").string());
+        ASSERT_TRUE(out);
+        ASSERT_TRUE(out->open((dir / "tilt.exr").string(), OIIO::ImageSpec(1, 1, 3, OIIO::TypeDesc::FLOAT)));
+        const float texel[3] = {0.5f + 0.5f * std::sin(tilt), 0.5f, 0.5f + 0.5f * std::cos(tilt)};
+        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, texel));
+        out->close();
+    }
+    const std::string lights = R"(, "lights": [{"type": "directional", "irradiance": 1, "direction": [)" +
+                               std::to_string(-std::sin(light)) + ", " +
+                               std::to_string(-std::cos(light)) + ", 0]}]";
+    const auto render = [&](bool shadowing) {
+        return renderIn(dir, floorScene("direct", 1,
+                                        R"({ "name": "floor", "color": 0.5, "normal_map":
+                                             {"texture": "tilt.exr", "shadowing": )" +
+                                            std::string(shadowing ? "true" : "false") + "} }",
+                                        lights))
+            .at(1, 1);
+    };
+    const Color plain = render(false), shadowed = render(true);
+    // Without shadowing: rho / pi * cos(angle between the tilted normal and the light).
+    EXPECT_NEAR(plain.r, 0.5f / kPi * std::cos(light - tilt), 1e-4f);
+    const float a2 = std::tan(tilt) * std::tan(tilt) / 8.0f;
+    const float g = 2.0f / (1.0f + std::sqrt(1.0f + a2 * std::tan(light) * std::tan(light)));
+    EXPECT_NEAR(shadowed.r / plain.r, g, 1e-4f);
+    EXPECT_LT(g, 0.94f);  // a visible effect
+}
+
 TEST(Textures, MeshUvsPlaceTheImageUpright) {
     // A 64 x 64 image in four quadrants: top left red, top right white,
     // bottom left black, bottom right blue.

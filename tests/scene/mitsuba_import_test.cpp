@@ -213,6 +213,28 @@ TEST(MitsubaImport, AMaskIsTheOpacityOfItsNestedBsdf) {
                 HasSubstr("the opacity must be one number or a texture"));
 }
 
+TEST(MitsubaImport, ANormalmapIsTheNormalMapOfItsNestedBsdfWithTerminatorShadowing) {
+    const fs::path dir = test::scratchDir("mitsuba-normalmap");
+    test::writeFile(dir / "n.png", "not read while parsing");
+    const SceneDesc d = parse(scene(R"(<shape type="cube"><bsdf type="normalmap">
+        <texture name="normalmap" type="bitmap"><boolean name="raw" value="true"/>
+          <string name="filename" value="n.png"/></texture>
+        <bsdf type="diffuse"/></bsdf></shape>)"), {}, dir / "scene.xml");
+    const Material& m = d.materials.at(1).material;
+    EXPECT_EQ(m.normalMap.file.filename(), "n.png");
+    EXPECT_TRUE(m.normalMapShadowing);
+    EXPECT_EQ(m.normalMap.sampling.filter, TextureFilter::Bilinear);  // Mitsuba's point reads
+    // The identity constant adds nothing; other constants are refused.
+    const SceneDesc identity = parse(scene(R"(<shape type="cube"><bsdf type="normalmap">
+        <texture name="normalmap" type="rawconstant"><vector name="value" value="0.5, 0.5, 1"/></texture>
+        <bsdf type="diffuse"/></bsdf></shape>)"));
+    EXPECT_TRUE(identity.materials.at(1).material.normalMap.file.empty());
+    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="normalmap">
+        <texture name="normalmap" type="rawconstant"><vector name="value" value="0.6, 0.5, 1"/></texture>
+        <bsdf type="diffuse"/></bsdf></shape>)")),
+                HasSubstr("a constant normal map other than the identity (0.5, 0.5, 1) is not supported"));
+}
+
 TEST(MitsubaImport, TransformsApplyInTheOrderWritten) {
     const fs::path dir = test::scratchDir("mitsuba-transform");
     test::writeFile(dir / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");

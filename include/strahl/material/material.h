@@ -21,6 +21,9 @@ struct Material {
     TexturedColor emission{Color(0.0f), {}};
     bool twoSidedEmission = false;  // otherwise only the front (Ng) side emits
     TextureRef normalMap;
+    // Chiang et al.'s shadowing of the light the normal map tilts towards
+    // grazing (docs/textures.md, "Normal maps"); Mitsuba's normalmap has it.
+    bool normalMapShadowing = false;
     TextureMapping mapping;
     // Alpha cut-out: 1 solid, 0 a hole, between a stochastic opacity, read
     // through the uvs at footprint 0 (docs/materials.md, "Opacity").
