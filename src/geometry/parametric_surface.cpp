@@ -62,6 +62,7 @@ void ParametricSurface::setTextureFrame(SurfaceInteraction& si, const SurfacePoi
     const DVec3 dpds = linear * (dom.width() * s.dpdu);
     const DVec3 dpdt = linear * (dom.height() * s.dpdv);
     if (finite(dpds)) si.dpdu = Vec3(dpds);
+    if (finite(dpdt)) si.dpdv = Vec3(dpdt);
     const double area = glm::length(glm::cross(dpds, dpdt));
     // Zero area (a pole, where ∂φ f vanishes) or overflow: density unknown.
     if (area > 0.0 && std::isfinite(area)) si.uvDensity = static_cast<float>(1.0 / std::sqrt(area));

@@ -22,6 +22,7 @@ SurfaceInteraction transformInteraction(const SurfaceInteraction& si, const Mat4
     out.Ns = unitOrZero(normalToWorld * si.Ns);
     const Mat3 linear(objectToWorld);
     out.dpdu = linear * si.dpdu;
+    out.dpdv = linear * si.dpdv;
     // A uniform scale s stretches world lengths by s: uv per world unit / s.
     // For other maps the cube root of |det| is the mean scale.
     const float scale = std::cbrt(std::abs(glm::determinant(linear)));

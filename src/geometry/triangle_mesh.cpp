@@ -114,15 +114,17 @@ SurfaceInteraction triangleInteraction(const TriangleMesh& mesh, uint32_t prim, 
     if (!mesh.uvs.empty()) {
         const Vec2 &t0 = mesh.uvs[i0], &t1 = mesh.uvs[i1], &t2 = mesh.uvs[i2];
         si.uv = b0 * t0 + u * t1 + v * t2;
-        // dp/du from the two edge equations dp_k = dpdu du_k + dpdv dv_k
+        // dp/du and dp/dv from the two edge equations dp_k = dpdu du_k + dpdv dv_k
         // (pbrt-v4 Triangle::InteractionFromIntersection), solved by Cramer's
-        // rule; a degenerate uv mapping leaves dpdu zero.
+        // rule; a degenerate uv mapping leaves them zero.
         const Vec2 duv02 = t0 - t2, duv12 = t1 - t2;
         const Vec3 dp02 = p0 - p2, dp12 = p1 - p2;
         const float det = duv02.x * duv12.y - duv02.y * duv12.x;
         if (std::abs(det) > 1e-12f) {
             const Vec3 dpdu = (duv12.y * dp02 - duv02.y * dp12) / det;
+            const Vec3 dpdv = (duv02.x * dp12 - duv12.x * dp02) / det;
             if (isFinite(dpdu)) si.dpdu = dpdu;
+            if (isFinite(dpdv)) si.dpdv = dpdv;
         }
         // Texture footprints: sqrt(uv area / world area) converts a world width
         // into uv units (isotropic average over the triangle).

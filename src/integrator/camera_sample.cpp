@@ -23,6 +23,7 @@ CameraSample shadeCameraSample(const World& world, const Integrator& integrator,
             sp.p = si.p;
             sp.n = si.Ns;
             sp.dpdu = si.dpdu;
+            sp.dpdv = si.dpdv;
             sp.uv = si.uv;
             sample.aov.albedo = makeBsdf(surface.material(), sp, world.textures.get()).albedo();
             sample.aov.position = si.p;

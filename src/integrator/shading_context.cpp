@@ -29,6 +29,7 @@ ShadingContext makeShadingContext(const World& world, const SurfaceHit& hit, flo
     sp.p = si.p;
     sp.n = si.Ns;
     sp.dpdu = si.dpdu;
+    sp.dpdv = si.dpdv;
     sp.uv = si.uv;
     sp.footprint = footprint * si.uvDensity;
     const TextureSystem* textures = world.textures.get();
@@ -48,7 +49,7 @@ ShadingContext makeShadingContext(const World& world, const SurfaceHit& hit, flo
     }
     ctx.ng = ng;
     ctx.n = n;
-    if (ctx.material->normalMapShadowing && ctx.material->normalMap.valid()) {
+    if (ctx.material->terminatorShadowing && ctx.material->mapsNormals()) {
         // The tilt the map gives the normal acts as a microfacet roughness:
         // alpha^2 = tan^2(tilt) / 8, at most 1 (Chiang et al. 2019).
         Vec3 unmapped = glm::normalize(si.Ns);

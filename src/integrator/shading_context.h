@@ -23,7 +23,7 @@ struct ShadingContext {
     Vec3 ng{0.0f};  // unit geometric normal (oriented, see above)
     Vec3 s{0.0f}, t{0.0f}, n{0.0f};  // shading frame, n = shading normal
     Bsdf bsdf;
-    // A normal map's terminator shadowing (material.normalMapShadowing):
+    // A normal or bump map's terminator shadowing (material.terminatorShadowing):
     // alpha^2 of the tilt, 0 for none, and the normal before the map.
     float terminatorAlpha2 = 0.0f;
     Vec3 unmappedNormal{0.0f};

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "strahl/texture/bump_map.h"
 #include "strahl/texture/normal_map.h"
 
 namespace strahl {
@@ -97,7 +98,18 @@ Color emittedRadiance(const Material& m, const ShadingPoint& sp, const TextureSy
 }
 
 Vec3 shadingNormal(const Material& m, const ShadingPoint& sp, const TextureSystem* textures) {
-    if (!m.normalMap.valid() || !textures) return sp.n;
+    if (!textures) return sp.n;
+    if (m.bumpMap.valid()) {
+        // The slope in the texture's own coordinates st' = M st, back to st
+        // by the chain rule: dh/ds = M00 dh/ds' + M10 dh/dt', and so on.
+        const Mat3& M = m.bumpMap.stTransform;
+        const Vec2 st(sp.uv.x, 1.0f - sp.uv.y);
+        const Vec3 h = textures->lookupSlope(m.bumpMap.handle, Vec2(M * Vec3(st, 1.0f)),
+                                             m.bumpMap.sampling);
+        const Vec2 slope(M[0][0] * h.y + M[0][1] * h.z, M[1][0] * h.y + M[1][1] * h.z);
+        return applyBumpMap(m.bumpScale * slope, sp.n, sp.dpdu, sp.dpdv);
+    }
+    if (!m.normalMap.valid()) return sp.n;
     return applyNormalMap(lookupNormalMap(m.normalMap, m.mapping, sp, *textures), sp.n, sp.dpdu);
 }
 

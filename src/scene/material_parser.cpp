@@ -15,8 +15,9 @@ namespace fs = std::filesystem;
 namespace {
 
 // The keys every material accepts; each kind adds its own (Kind::kKeys).
-constexpr std::array<std::string_view, 8> kCommonKeys = {
-    "name", "type", "emission", "two_sided", "normal_map", "mapping", "opacity", "opacity_cutoff"};
+constexpr std::array<std::string_view, 9> kCommonKeys = {
+    "name",    "type",    "emission",       "two_sided", "normal_map",
+    "bump_map", "mapping", "opacity", "opacity_cutoff"};
 
 fs::path textureFile(const JsonValue& v, const fs::path& folder) {
     return resolveExistingFile(folder, v, "texture file");
@@ -160,12 +161,24 @@ MaterialDesc parseMaterial(const JsonValue& m, const fs::path& folder) {
             mat.normalMap.file = textureFile(normal->get("texture"), folder);
             parseTextureSampling(*normal, mat.normalMap);
             if (auto shadowing = normal->find("shadowing"))
-                mat.normalMapShadowing = shadowing->boolean();
+                mat.terminatorShadowing = shadowing->boolean();
         } else {
             mat.normalMap.file = textureFile(*normal, folder);
         }
     }
+    if (auto bump = m.find("bump_map")) {
+        // {"texture": file, "scale": 1, "shadowing": bool, sampling keys}.
+        if (m.has("normal_map")) bump->fail("give either 'normal_map' or 'bump_map', not both");
+        if (!bump->raw().is_object()) bump->fail("expected {\"texture\": file, \"scale\": ...}");
+        requireTextureKeys(*bump, {"texture", "scale", "shadowing"});
+        mat.bumpMap.file = textureFile(bump->get("texture"), folder);
+        parseTextureSampling(*bump, mat.bumpMap);
+        if (auto scale = bump->find("scale")) mat.bumpScale = scale->number();
+        if (auto shadowing = bump->find("shadowing")) mat.terminatorShadowing = shadowing->boolean();
+    }
     if (auto mapping = m.find("mapping")) mat.mapping = parseMapping(*mapping);
+    if (mat.mapping.kind == TextureMapping::Kind::Triplanar && !mat.bumpMap.file.empty())
+        m.get("bump_map").fail("a bump map is read through the uvs: it cannot be mapped triplanar");
     if (auto opacity = m.find("opacity")) {
         parseTexturedFloat(*opacity, folder, 0.0f, 1.0f, mat.opacity);
         if (mat.emits())

@@ -360,6 +360,26 @@ private:
             m["normal_map"] = normalMap;
             return m;
         }
+        if (b.type == "bumpmap") {
+            // Mitsuba's bump map: the luminance of a raw bitmap times `scale`
+            // as a height over (u, v), with its terminator shadowing.
+            const Child* inner = child(b, "bsdf");
+            if (!inner) unsupported(b, "needs a nested <bsdf>");
+            allowOnly(b, {"scale"});
+            json m = bsdfMaterial(*inner->object);
+            const Child* map = nullptr;
+            for (const Child& c : b.children)
+                if (c.object->tag == "texture") map = &c;
+            if (!map) unsupported(b, "needs a <texture>");
+            const Object& t = *map->object;
+            if (t.type != "bitmap" || !boolean(t, "raw", false))
+                unsupported(t, "a bump map must be a bitmap with raw = true (strahl reads heights as data)");
+            json bump = texture(t, /*rawAllowed=*/true);
+            bump["scale"] = number(b, "scale", 1.0);
+            bump["shadowing"] = true;
+            m["bump_map"] = bump;
+            return m;
+        }
         if (b.type == "mask") {
             // Mitsuba's mask passes a ray through with probability 1 - opacity;
             // strahl's opacity cuts the same holes out of the surface.

@@ -172,18 +172,56 @@ struct TextureSystem::Impl {
                   wrapIndex(std::floor(y), e.height, sampling.wrap), out);
             return;
         }
-        const float x0 = std::floor(x - 0.5f), y0 = std::floor(y - 0.5f);
-        const float fx = x - 0.5f - x0, fy = y - 0.5f - y0;
-        const int i0 = wrapIndex(x0, e.width, sampling.wrap), i1 = wrapIndex(x0 + 1.0f, e.width, sampling.wrap);
-        const int j0 = wrapIndex(y0, e.height, sampling.wrap), j1 = wrapIndex(y0 + 1.0f, e.height, sampling.wrap);
-        float v00[4], v10[4], v01[4], v11[4];
-        texel(e, first, count, i0, j0, v00);
-        texel(e, first, count, i1, j0, v10);
-        texel(e, first, count, i0, j1, v01);
-        texel(e, first, count, i1, j1, v11);
+        const Quad q = quad(e, first, count, x, y, sampling.wrap);
         for (int c = 0; c < count; ++c)
-            out[c] = (1.0f - fy) * ((1.0f - fx) * v00[c] + fx * v10[c]) +
-                     fy * ((1.0f - fx) * v01[c] + fx * v11[c]);
+            out[c] = (1.0f - q.fy) * ((1.0f - q.fx) * q.v00[c] + q.fx * q.v10[c]) +
+                     q.fy * ((1.0f - q.fx) * q.v01[c] + q.fx * q.v11[c]);
+    }
+
+    // The four texels around texel-space point (x, y) (texel (i, j) centred
+    // at (i + 1/2, j + 1/2)) and the bilinear weights fx, fy between them.
+    struct Quad {
+        float v00[4], v10[4], v01[4], v11[4];
+        float fx, fy;
+    };
+    Quad quad(const Entry& e, int first, int count, float x, float y, TextureWrap wrap) const {
+        Quad q;
+        const float x0 = std::floor(x - 0.5f), y0 = std::floor(y - 0.5f);
+        q.fx = x - 0.5f - x0;
+        q.fy = y - 0.5f - y0;
+        const int i0 = wrapIndex(x0, e.width, wrap), i1 = wrapIndex(x0 + 1.0f, e.width, wrap);
+        const int j0 = wrapIndex(y0, e.height, wrap), j1 = wrapIndex(y0 + 1.0f, e.height, wrap);
+        texel(e, first, count, i0, j0, q.v00);
+        texel(e, first, count, i1, j0, q.v10);
+        texel(e, first, count, i0, j1, q.v01);
+        texel(e, first, count, i1, j1, q.v11);
+        return q;
+    }
+
+    // lookupSlope: see texture_system.h. The bilinear interpolant's partial
+    // derivatives are exact: d/dx = (1 - fy)(v10 - v00) + fy (v11 - v01) per
+    // texel, times the resolution for d/ds (x = s * width; the wrap only
+    // reindexes texels, so it does not change the sign).
+    Vec3 slope(const Entry& e, const Vec2& st, const TextureSampling& sampling) const {
+        const float x = reduce(st.x, sampling.wrap) * static_cast<float>(e.width);
+        const float y = reduce(st.y, sampling.wrap) * static_cast<float>(e.height);
+        const int count = e.grey() ? 1 : 3;
+        const auto height = [&](const float* v) {
+            return count == 1 ? v[0] : 0.2126f * v[0] + 0.7152f * v[1] + 0.0722f * v[2];
+        };
+        if (sampling.filter == TextureFilter::Nearest) {
+            float v[4];
+            texel(e, 0, count, wrapIndex(std::floor(x), e.width, sampling.wrap),
+                  wrapIndex(std::floor(y), e.height, sampling.wrap), v);
+            return Vec3(height(v), 0.0f, 0.0f);
+        }
+        const Quad q = quad(e, 0, count, x, y, sampling.wrap);
+        const float h00 = height(q.v00), h10 = height(q.v10), h01 = height(q.v01), h11 = height(q.v11);
+        const float value = (1.0f - q.fy) * ((1.0f - q.fx) * h00 + q.fx * h10) +
+                            q.fy * ((1.0f - q.fx) * h01 + q.fx * h11);
+        const float dx = (1.0f - q.fy) * (h10 - h00) + q.fy * (h11 - h01);
+        const float dy = (1.0f - q.fx) * (h01 - h00) + q.fx * (h11 - h10);
+        return Vec3(value, dx * static_cast<float>(e.width), dy * static_cast<float>(e.height));
     }
 
 private:
@@ -332,6 +370,11 @@ Vec4 TextureSystem::lookup(TextureHandle texture, const Vec2& st, float footprin
     impl_->filter(e, 0, e.channels, st, footprint, sampling, v);
     return e.grey() ? Vec4(v[0], v[0], v[0], e.channels == 2 ? v[1] : 1.0f)
                     : Vec4(v[0], v[1], v[2], e.channels == 4 ? v[3] : 1.0f);
+}
+
+Vec3 TextureSystem::lookupSlope(TextureHandle texture, const Vec2& st,
+                                const TextureSampling& sampling) const {
+    return impl_->slope(impl_->entry(texture), st, sampling);
 }
 
 Color TextureSystem::lookupColor(TextureHandle texture, const Vec2& st, float footprint,

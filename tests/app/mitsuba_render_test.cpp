@@ -47,7 +47,7 @@ const MitsubaCase kCases[] = {
     {"floating_sphere", "directional_direct", ""},
     {"instancing", "instancing_path", ""},
     {"bsdf_spheres", "arealight_path", ""},
-    {"bsdf_spheres", "bumpmap_path", "<bsdf type=\"bumpmap\" id=\"object_bsdf\">: this BSDF is not supported yet"},
+    {"bsdf_spheres", "bumpmap_path", ""},
     {"bsdf_spheres", "constant_path", ""},
     {"bsdf_spheres", "envmap_path", ""},
     {"bsdf_spheres", "normalmap_identity_roughconductor_path", ""},

@@ -40,7 +40,7 @@ TEST(MaterialKinds, KindNameOfAMaterial) {
 
 // How many textures each kind declares, plus the emission and the normal map
 // every material has.
-TEST(MaterialKinds, ForEachTextureVisitsTheKindsTexturesThenOpacityEmissionAndNormalMap) {
+TEST(MaterialKinds, ForEachTextureVisitsTheKindsTexturesThenOpacityEmissionNormalAndBumpMap) {
     const std::vector<std::pair<MaterialKind, int>> cases = {
         {DiffuseMaterial{}, 1},    {PhongMaterial{}, 1},     {BlinnMaterial{}, 1},
         {ConductorMaterial{}, 2},  {DielectricMaterial{}, 2}, {PlasticMaterial{}, 2},
@@ -50,10 +50,11 @@ TEST(MaterialKinds, ForEachTextureVisitsTheKindsTexturesThenOpacityEmissionAndNo
         m.kind = kind;
         std::vector<TextureEncoding> seen;
         m.forEachTexture([&](TextureRef&, TextureEncoding e) { seen.push_back(e); });
-        ASSERT_EQ(seen.size(), size_t(own + 3)) << kindName(kind);
-        EXPECT_EQ(seen[seen.size() - 3], TextureEncoding::Data) << "opacity";
-        EXPECT_EQ(seen[seen.size() - 2], TextureEncoding::Color) << "emission";
-        EXPECT_EQ(seen.back(), TextureEncoding::Data) << "normal map";
+        ASSERT_EQ(seen.size(), size_t(own + 4)) << kindName(kind);
+        EXPECT_EQ(seen[seen.size() - 4], TextureEncoding::Data) << "opacity";
+        EXPECT_EQ(seen[seen.size() - 3], TextureEncoding::Color) << "emission";
+        EXPECT_EQ(seen[seen.size() - 2], TextureEncoding::Data) << "normal map";
+        EXPECT_EQ(seen.back(), TextureEncoding::Data) << "bump map";
     }
 }
 

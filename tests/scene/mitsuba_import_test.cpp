@@ -222,7 +222,7 @@ TEST(MitsubaImport, ANormalmapIsTheNormalMapOfItsNestedBsdfWithTerminatorShadowi
         <bsdf type="diffuse"/></bsdf></shape>)"), {}, dir / "scene.xml");
     const Material& m = d.materials.at(1).material;
     EXPECT_EQ(m.normalMap.file.filename(), "n.png");
-    EXPECT_TRUE(m.normalMapShadowing);
+    EXPECT_TRUE(m.terminatorShadowing);
     EXPECT_EQ(m.normalMap.sampling.filter, TextureFilter::Bilinear);  // Mitsuba's point reads
     // The identity constant adds nothing; other constants are refused.
     const SceneDesc identity = parse(scene(R"(<shape type="cube"><bsdf type="normalmap">

@@ -422,10 +422,10 @@ TEST(SceneParser, UnknownKeysNameTheObjectAndTheAllowedKeys) {
               "clamp_direct, clamp_indirect)");
     EXPECT_EQ(errorWith(R"("materials": [{"name": "a", "colour": 1}])"),
               "scene.json: /materials/0: unknown key 'colour' for a diffuse material (allowed: "
-              "name, type, emission, two_sided, normal_map, mapping, opacity, opacity_cutoff, color, diffuse)");
+              "name, type, emission, two_sided, normal_map, bump_map, mapping, opacity, opacity_cutoff, color, diffuse)");
     EXPECT_EQ(errorWith(R"("materials": [{"name": "a", "type": "conductor", "color": 1}])"),
               "scene.json: /materials/0: unknown key 'color' for a conductor material (allowed: "
-              "name, type, emission, two_sided, normal_map, mapping, opacity, opacity_cutoff, metal, eta, k, "
+              "name, type, emission, two_sided, normal_map, bump_map, mapping, opacity, opacity_cutoff, metal, eta, k, "
               "roughness, roughness_u, roughness_v, distribution, masking)");
     EXPECT_EQ(errorOf(triangleWith(R"("faces": [0, 1, 2])")),
               "scene.json: /shapes/0: unknown key 'faces' (allowed: type, name, file, positions, "

@@ -6,6 +6,7 @@
 // texture in an OBJ's .mtl is only a warning.
 
 #include <OpenImageIO/imageio.h>
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -67,7 +68,7 @@ TEST(ShadingInput, UnknownMaterialTypeListsTheTypes) {
 TEST(ShadingInput, KeyOfAnotherTypeListsTheAllowedKeys) {
     EXPECT_EQ(materialError(R"({"name": "m", "type": "conductor", "color": [1, 0.8, 0.3]})"),
               "scene.json: /materials/0: unknown key 'color' for a conductor material (allowed: "
-              "name, type, emission, two_sided, normal_map, mapping, opacity, opacity_cutoff, metal, eta, k, roughness, "
+              "name, type, emission, two_sided, normal_map, bump_map, mapping, opacity, opacity_cutoff, metal, eta, k, roughness, "
               "roughness_u, roughness_v, distribution, masking)");
 }
 
@@ -126,6 +127,23 @@ TEST(ShadingInput, MicrofacetModelKeys) {
               "scene.json: /materials/0: 'roughness_u' and 'roughness_v' go together");
     EXPECT_EQ(materialError(R"({"name": "m", "type": "plastic", "coat_transmittance": 1})"),
               "scene.json: /materials/0/coat_transmittance: expected a string, got number 1");
+}
+
+TEST(ShadingInput, BumpMapKeys) {
+    const fs::path dir = test::scratchDir("shading-bump");
+    test::writeFile(dir / "h.png", "not read while parsing");
+    const auto error = [&](const std::string& material) {
+        return test::errorMessage([&] { parseIn(dir, R"("materials": [)" + material + "]"); });
+    };
+    EXPECT_THAT(error(R"({"name": "m", "bump_map": {"texture": "h.png"}, "normal_map": "h.png"})"),
+                testing::HasSubstr("/materials/0/bump_map: give either 'normal_map' or 'bump_map', not both"));
+    EXPECT_THAT(error(R"({"name": "m", "bump_map": "h.png"})"),
+                testing::HasSubstr("/materials/0/bump_map: expected {\"texture\": file, \"scale\": ...}"));
+    EXPECT_THAT(error(R"({"name": "m", "bump_map": {"texture": "h.png"}, "mapping": "triplanar"})"),
+                testing::HasSubstr("/materials/0/bump_map: a bump map is read through the uvs: it cannot be mapped triplanar"));
+    const SceneDesc ok = parseIn(dir, R"("materials": [{"name": "m", "bump_map": {"texture": "h.png", "scale": 0.02, "shadowing": true}}])");
+    EXPECT_EQ(ok.materials[0].material.bumpScale, 0.02f);
+    EXPECT_TRUE(ok.materials[0].material.terminatorShadowing);
 }
 
 TEST(ShadingInput, PhongThatReflectsMoreThanItReceives) {

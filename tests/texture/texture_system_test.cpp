@@ -460,3 +460,28 @@ TEST(TextureSystem, ParallelLookupsMatchSerial) {
 
 }  // namespace
 }  // namespace strahl
+
+namespace strahl {
+namespace {
+
+TEST(TextureSystem, SlopeIsTheExactDerivativeOfTheBilinearHeight) {
+    const fs::path dir = test::scratchDir("texture-slope");
+    // 4 x 2 float grey: row 0 = 0, 1, 3, 6; row 1 = 10 more.
+    const std::vector<float> heights = {0, 1, 3, 6, 10, 11, 13, 16};
+    writeImage(dir / "h.exr", 4, 2, 1, OIIO::TypeDesc::FLOAT, heights);
+    TextureSystem textures;
+    const TextureHandle h = textures.add(dir / "h.exr", TextureEncoding::Data);
+    const TextureSampling bilinear{TextureWrap::Clamp, TextureFilter::Bilinear};
+    // Between the centres of texels (1, 0) and (2, 0), a quarter of the way
+    // down between the rows: x = 2, y = 0.75 in texels.
+    const Vec3 v = textures.lookupSlope(h, Vec2(2.0f / 4.0f, 0.75f / 2.0f), bilinear);
+    EXPECT_NEAR(v.x, 0.5f * (1 + 3) + 0.25f * 10, 1e-5f);
+    EXPECT_NEAR(v.y, (3 - 1) * 4.0f, 1e-4f);  // per texel times the width
+    EXPECT_NEAR(v.z, 10 * 2.0f, 1e-4f);       // per texel times the height
+    // Nearest: flat texels, no slope.
+    const Vec3 n = textures.lookupSlope(h, Vec2(0.6f, 0.25f), {TextureWrap::Clamp, TextureFilter::Nearest});
+    EXPECT_EQ(n, Vec3(3.0f, 0.0f, 0.0f));
+}
+
+}  // namespace
+}  // namespace strahl

@@ -16,6 +16,7 @@ struct SurfaceInteraction {
     Vec3 Ns{0.0f};      // unit shading normal, same hemisphere as Ng
     Vec2 uv{0.0f};
     Vec3 dpdu{0.0f};    // tangent along u (texture frame, normal maps); zero if unknown
+    Vec3 dpdv{0.0f};    // tangent along v (bump maps); zero if unknown
     float uvDensity = 0.0f;  // uv units per world unit near p (texture footprints); 0 if unknown
     uint32_t materialSlot = 0;  // faceMaterials entry, 0 if the mesh has none
 };
@@ -23,7 +24,7 @@ struct SurfaceInteraction {
 // An interaction computed in an instance's object space, moved to world space:
 // p mapped with its error bound widened for the map's rounding, normals mapped
 // by `normalToWorld` (the inverse transpose of objectToWorld's linear part) and
-// renormalised, dpdu by the linear part (uvDensity divided by its mean
+// renormalised, dpdu and dpdv by the linear part (uvDensity divided by its mean
 // scale); uv and the material slot are unchanged.
 SurfaceInteraction transformInteraction(const SurfaceInteraction& si, const Mat4& objectToWorld,
                                         const Mat3& normalToWorld);

@@ -21,9 +21,13 @@ struct Material {
     TexturedColor emission{Color(0.0f), {}};
     bool twoSidedEmission = false;  // otherwise only the front (Ng) side emits
     TextureRef normalMap;
-    // Chiang et al.'s shadowing of the light the normal map tilts towards
-    // grazing (docs/textures.md, "Normal maps"); Mitsuba's normalmap has it.
-    bool normalMapShadowing = false;
+    // A height map (its luminance; exclusive with normalMap) times bumpScale.
+    TextureRef bumpMap;
+    float bumpScale = 1.0f;
+    // Chiang et al.'s shadowing of the light a normal or bump map tilts
+    // towards grazing (docs/textures.md, "Normal maps"); Mitsuba's normalmap
+    // and bumpmap have it.
+    bool terminatorShadowing = false;
     TextureMapping mapping;
     // Alpha cut-out: 1 solid, 0 a hole, between a stochastic opacity, read
     // through the uvs at footprint 0 (docs/materials.md, "Opacity").
@@ -46,15 +50,18 @@ struct Material {
     bool cutsOut() const { return opacity.value < 1.0f || !opacity.texture.file.empty(); }
 
     // Calls fn(TextureRef&, TextureEncoding) for every texture the material
-    // can use, bound or not: the kind's, the opacity's, then the emission's
-    // and the normal map.
+    // can use, bound or not: the kind's, the opacity's, then the emission's,
+    // the normal map and the bump map.
     template <typename Fn>
     void forEachTexture(Fn&& fn) {
         std::visit([&](auto& k) { k.forEachTexture(fn); }, kind);
         fn(opacity.texture, TextureEncoding::Data);
         fn(emission.texture, TextureEncoding::Color);
         fn(normalMap, TextureEncoding::Data);
+        fn(bumpMap, TextureEncoding::Data);
     }
+    // Whether a normal or bump map perturbs the shading normal.
+    bool mapsNormals() const { return normalMap.valid() || bumpMap.valid(); }
 };
 
 // The BSDF of `material` at sp. `textures` may be null when no texture is bound.
@@ -64,7 +71,7 @@ Color emittedRadiance(const Material& material, const ShadingPoint& sp,
                       const TextureSystem* textures);
 // The opacity at texture coordinates uv (footprint 0), not clamped.
 float opacityAt(const Material& material, Vec2 uv, const TextureSystem* textures);
-// The shading normal after the material's normal map (sp.n without one).
+// The shading normal after the material's normal or bump map (sp.n without).
 Vec3 shadingNormal(const Material& material, const ShadingPoint& sp,
                    const TextureSystem* textures);
 

@@ -64,6 +64,7 @@ struct ShadingPoint {
     Vec3 p{0.0f};      // world space (triplanar)
     Vec3 n{0.0f};      // shading normal (triplanar blend, normal-map frame)
     Vec3 dpdu{0.0f};   // tangent along u (normal maps, anisotropy); zero if unknown
+    Vec3 dpdv{0.0f};   // tangent along v (bump maps); zero if unknown
     Vec2 uv{0.0f};     // texture coordinates, v up
     float footprint = 0.0f;  // ray footprint width in uv units (texture filtering)
 };

@@ -89,6 +89,13 @@ public:
     float lookupChannel(TextureHandle texture, int channel, const Vec2& st, float footprint,
                         const TextureSampling& sampling = {}) const;
 
+    // A height field's value and slope at st: the luminance (Rec. 709; the
+    // grey of a grey image) of the full-resolution image interpolated
+    // bilinearly between texel centres, and its exact derivatives along s and
+    // t, as (value, d/ds, d/dt). The nearest filter gives slope 0; the
+    // footprint filter reads as bilinear. Bump maps read this.
+    Vec3 lookupSlope(TextureHandle texture, const Vec2& st, const TextureSampling& sampling = {}) const;
+
     // Triplanar projection for surfaces without UVs (implicit surfaces): the
     // lookups at st = (p.y, p.z), (p.x, p.z) and (p.x, p.y), each times scale,
     // blended by |n.x|^sharpness, |n.y|^sharpness, |n.z|^sharpness normalised
