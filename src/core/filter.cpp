@@ -11,7 +11,8 @@
 namespace strahl {
 namespace {
 
-constexpr std::string_view kFilterNames[] = {"box", "gaussian", "blackman-harris"};  // enum order
+constexpr std::string_view kFilterNames[] = {"box", "gaussian", "blackman-harris",
+                                             "tent"};  // enum order
 
 // The 4-term Blackman-Harris window (Harris 1978, -92 dB side lobes); they sum
 // to 1, so f1(0) = 1, and f1(+-radius) = a0 - a1 + a2 - a3 = 6e-5 > 0.
@@ -59,12 +60,15 @@ PixelFilter PixelFilter::blackmanHarris(float radius) {
     return {FilterType::BlackmanHarris, radius, 0.0f};
 }
 
+PixelFilter PixelFilter::tent(float radius) { return {FilterType::Tent, radius, 0.0f}; }
+
 std::span<const std::string_view> PixelFilter::names() { return kFilterNames; }
 
 PixelFilter PixelFilter::fromName(std::string_view name, std::optional<float> radius) {
     if (name == "box") return radius ? box(*radius) : box();
     if (name == "gaussian") return radius ? gaussian(*radius) : gaussian();
     if (name == "blackman-harris") return radius ? blackmanHarris(*radius) : blackmanHarris();
+    if (name == "tent") return radius ? tent(*radius) : tent();
     std::string valid;
     for (std::string_view n : kFilterNames) valid += concat(valid.empty() ? "" : ", ", n);
     fail("filter: unknown filter '", name, "' (valid: ", valid, ")");
@@ -99,6 +103,8 @@ float PixelFilter::evaluate1D(float x) const {
                              kA3 * std::cos(3.0 * phi);
             return static_cast<float>(std::max(f, 0.0));
         }
+        case FilterType::Tent:
+            return static_cast<float>(1.0 - std::abs(xd) / r);
     }
     fail("invalid FilterType value ", static_cast<int>(type_));
 }
@@ -124,6 +130,9 @@ double PixelFilter::antiderivative1D(double x) const {
                                        (kA1 * std::sin(phi) + kA2 / 2.0 * std::sin(2.0 * phi) +
                                         kA3 / 3.0 * std::sin(3.0 * phi));
         }
+        case FilterType::Tent:
+            // (x + r)^2 / 2r on the rising half, r - (r - x)^2 / 2r on the falling one.
+            return x <= 0.0 ? (x + r) * (x + r) / (2.0 * r) : r - (r - x) * (r - x) / (2.0 * r);
     }
     fail("invalid FilterType value ", static_cast<int>(type_));
 }

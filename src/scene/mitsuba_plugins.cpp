@@ -851,8 +851,11 @@ private:
                 allowOnly(r, {"stddev"});
                 if (number(r, "stddev", 0.5) != 0.5)
                     unsupported(r, "only the default stddev 0.5 is supported");
+            } else if (r.type == "tent") {
+                allowOnly(r, {"radius"});
+                filter = json{{"type", "tent"}, {"radius", number(r, "radius", 1.0)}};
             } else {
-                unsupported(r, "this reconstruction filter is not supported (box and gaussian are)");
+                unsupported(r, "this reconstruction filter is not supported (box, tent and gaussian are)");
             }
         }
         doc_["film"] = {{"width", width},

@@ -16,7 +16,8 @@ namespace strahl {
 namespace {
 
 std::vector<PixelFilter> defaultFilters() {
-    return {PixelFilter::box(), PixelFilter::gaussian(), PixelFilter::blackmanHarris()};
+    return {PixelFilter::box(), PixelFilter::gaussian(), PixelFilter::blackmanHarris(),
+            PixelFilter::tent()};
 }
 
 // Simpson's rule for the integral of evaluate over [x0, x1] x [y0, y1]; the
@@ -119,8 +120,13 @@ TEST(PixelFilter, DefaultsAndNames) {
     EXPECT_EQ(wide.sigma(), 0.5f);
     EXPECT_EQ(PixelFilter::fromName("box", 1.0f).radius(), 1.0f);
     EXPECT_EQ(PixelFilter::fromName("blackman-harris", 1.5f).radius(), 1.5f);
-    ASSERT_EQ(PixelFilter::names().size(), 3u);
+    ASSERT_EQ(PixelFilter::names().size(), 4u);
     EXPECT_EQ(PixelFilter::names()[2], "blackman-harris");
+    const PixelFilter tent = PixelFilter::fromName("tent", 2.0f);
+    EXPECT_EQ(tent.type(), FilterType::Tent);
+    EXPECT_EQ(tent.radius(), 2.0f);
+    EXPECT_FLOAT_EQ(tent.evaluate(Vec2(0.5f, 0.0f)), 0.75f);  // 1 - |x| / r
+    EXPECT_FLOAT_EQ(tent.integral(), 4.0f);                    // (r)^2
 }
 
 TEST(PixelFilter, UnknownNameListsTheValidOnes) {

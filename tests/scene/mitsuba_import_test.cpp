@@ -235,6 +235,23 @@ TEST(MitsubaImport, ANormalmapIsTheNormalMapOfItsNestedBsdfWithTerminatorShadowi
                 HasSubstr("a constant normal map other than the identity (0.5, 0.5, 1) is not supported"));
 }
 
+TEST(MitsubaImport, ReconstructionFilters) {
+    const auto filmWith = [](const std::string& rfilter) {
+        std::string text = scene("");
+        const std::string film = R"(<film type="hdrfilm">)";
+        text.replace(text.find(film), film.size(), film + rfilter);
+        return text;
+    };
+    const SceneDesc gaussian = parse(scene(""));  // Mitsuba's default: Gaussian, sigma 0.5
+    EXPECT_EQ(gaussian.film.filter, "gaussian");
+    EXPECT_EQ(gaussian.film.filterRadius, 2.0f);
+    const SceneDesc tent = parse(filmWith(R"(<rfilter type="tent"><float name="radius" value="1.5"/></rfilter>)"));
+    EXPECT_EQ(tent.film.filter, "tent");
+    EXPECT_EQ(tent.film.filterRadius, 1.5f);
+    EXPECT_THAT(errorOf(filmWith(R"(<rfilter type="mitchell"/>)")),
+                HasSubstr("this reconstruction filter is not supported (box, tent and gaussian are)"));
+}
+
 TEST(MitsubaImport, TransformsApplyInTheOrderWritten) {
     const fs::path dir = test::scratchDir("mitsuba-transform");
     test::writeFile(dir / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");

@@ -390,10 +390,10 @@ TEST(ShadingInput, AoSamplesZero) {
 
 TEST(ShadingInput, UnknownFilterListsTheFilters) {
     EXPECT_EQ(errorWith(R"("film": {"filter": "mitchell"})"),
-              "scene.json: /film/filter: must be one of box, gaussian, blackman-harris, got "
+              "scene.json: /film/filter: must be one of box, gaussian, blackman-harris, tent, got "
               "'mitchell'");
     EXPECT_EQ(errorWith(R"("film": {"filter": {"type": "mitchell", "radius": 2}})"),
-              "scene.json: /film/filter/type: must be one of box, gaussian, blackman-harris, got "
+              "scene.json: /film/filter/type: must be one of box, gaussian, blackman-harris, tent, got "
               "'mitchell'");
 }
 

@@ -12,6 +12,7 @@
 //                    shifted so it reaches 0 at the support's edge (as pbrt-v4)
 //   blackman-harris  f1 = a0 + a1 cos(pi x / r) + a2 cos(2 pi x / r) + a3 cos(3 pi x / r),
 //                    the 4-term Blackman-Harris window over the width 2 r
+//   tent             f1 = 1 - |x| / r, the triangle (Mitsuba's `tent`)
 
 #include <optional>
 #include <span>
@@ -22,7 +23,7 @@
 
 namespace strahl {
 
-enum class FilterType { Box, Gaussian, BlackmanHarris };
+enum class FilterType { Box, Gaussian, BlackmanHarris, Tent };
 
 class PixelFilter {
 public:
@@ -34,7 +35,8 @@ public:
     static PixelFilter box(float radius = 0.5f);
     static PixelFilter gaussian(float radius = 1.5f, float sigma = 0.5f);
     static PixelFilter blackmanHarris(float radius = 2.0f);  // width 4 pixels
-    // By name ("box", "gaussian", "blackman-harris"), with that filter's default
+    static PixelFilter tent(float radius = 1.0f);
+    // By name ("box", "gaussian", "blackman-harris", "tent"), with that filter's default
     // radius unless one is given (a Gaussian keeps sigma 0.5). Throws
     // strahl::Error listing the valid names for any other name.
     static PixelFilter fromName(std::string_view name, std::optional<float> radius = std::nullopt);
