@@ -250,8 +250,7 @@ private:
                 p.xyz = xyzAttributes(node, place, 0.0);
             }
         } else if (tag == "spectrum" && !node.attribute("value")) {
-            fail(place.text(), ": <spectrum name=\"", p.name,
-                 "\">: only spectra given by value are read (a spectrum file is not supported)");
+            p.value = spectrumFile(attribute(node, "filename", place), source, place);
         } else {
             p.value = attribute(node, "value", place);
         }
@@ -350,19 +349,43 @@ private:
         return m;
     }
 
-    void include(const pugi::xml_node& node, const Source& source, const Place& place,
-                 Object& scene) {
-        // As Mitsuba's file resolver: the main scene's folder, the <path>
-        // folders, then the including file's own.
-        const std::string name = attribute(node, "filename", place);
-        fs::path file = source.folder / name;
+    // A file named in `source`, as Mitsuba's file resolver finds it: in the
+    // main scene's folder, the <path> folders, then the naming file's own.
+    fs::path resolve(const std::string& name, const Source& source) const {
         std::vector<fs::path> folders = {sceneFolder_};
         folders.insert(folders.end(), searchPath_.begin(), searchPath_.end());
         for (const fs::path& folder : folders)
-            if (fs::exists(folder / name)) {
-                file = folder / name;
-                break;
-            }
+            if (fs::exists(folder / name)) return folder / name;
+        return source.folder / name;
+    }
+
+    // A spectrum file (Mitsuba's .spd: lines "wavelength value", '#' starts a
+    // comment) as the value of an inline spectrum, "w1:v1, w2:v2, ...".
+    std::string spectrumFile(const std::string& name, const Source& source, const Place& place) {
+        const fs::path file = resolve(name, source);
+        const std::string text = readFile(file, place);
+        std::ostringstream pairs;
+        pairs.precision(17);  // every digit of the file's numbers survives the round trip
+        bool any = false;
+        std::istringstream lines(text);
+        std::string line;
+        for (int number = 1; std::getline(lines, line); ++number) {
+            line = line.substr(0, line.find('#'));
+            const Place at{file.string(), number};
+            const std::vector<double> v = numbers(line, at, "a spectrum file line");
+            if (v.empty()) continue;
+            if (v.size() != 2) fail(at.text(), ": expected a wavelength and a value, got ", v.size(), " numbers");
+            pairs << (any ? ", " : "") << v[0] << ":" << v[1];
+            any = true;
+        }
+        if (!any) fail(place.text(), ": the spectrum file '", file.string(), "' has no values");
+        return pairs.str();
+    }
+
+    void include(const pugi::xml_node& node, const Source& source, const Place& place,
+                 Object& scene) {
+        const std::string name = attribute(node, "filename", place);
+        const fs::path file = resolve(name, source);
         const fs::path canonical = fs::weakly_canonical(file);
         if (std::find(including_.begin(), including_.end(), canonical) != including_.end())
             fail(place.text(), ": <include filename=\"", name, "\">: includes itself (a cycle)");

@@ -266,6 +266,24 @@ TEST(MitsubaImport, TransformsApplyInTheOrderWritten) {
     EXPECT_FLOAT_EQ(d.shapes[1].transform[0][0], 2.0f);
 }
 
+TEST(MitsubaImport, SpectrumFilesAreTheSpectraTheyList) {
+    const fs::path dir = test::scratchDir("mitsuba-spd");
+    test::writeFile(dir / "spectra/red.spd", "# a comment\n400 0.1\n\n500 0.3  # another\n600 0.8\n");
+    const auto reflectance = [&](const std::string& spectrum) {
+        test::writeFile(dir / "scene.xml", scene(R"(<path value="spectra"/>
+  <shape type="cube"><bsdf type="diffuse">)" + spectrum + "</bsdf></shape>"));
+        return SceneDocument::read(dir / "scene.xml").parse().materials.at(1).material;
+    };
+    const auto diffuseOf = [](const Material& m) { return std::get<DiffuseMaterial>(m.kind).color.value; };
+    EXPECT_EQ(diffuseOf(reflectance(R"(<spectrum name="reflectance" filename="red.spd"/>)")),
+              diffuseOf(reflectance(R"(<spectrum name="reflectance" value="400:0.1, 500:0.3, 600:0.8"/>)")));
+    test::writeFile(dir / "spectra/bad.spd", "400 0.1\n500 0.3 7\n");
+    EXPECT_THAT(test::errorMessage([&] { reflectance(R"(<spectrum name="reflectance" filename="bad.spd"/>)"); }),
+                HasSubstr("bad.spd:2: expected a wavelength and a value, got 3 numbers"));
+    EXPECT_THAT(test::errorMessage([&] { reflectance(R"(<spectrum name="reflectance" filename="gone.spd"/>)"); }),
+                HasSubstr("scene.xml:12: cannot open"));
+}
+
 TEST(MitsubaImport, IdsAndRefsShareOneMaterialAndLightsMap) {
     const SceneDesc d = parse(scene(R"(
   <bsdf type="diffuse" id="red"><rgb name="reflectance" value="0.8, 0.1, 0.1"/></bsdf>
