@@ -81,6 +81,11 @@ void TriangleMesh::computeVertexNormals() {
     }
 }
 
+void TriangleMesh::flipOrientation() {
+    for (size_t t = 0; t + 2 < indices.size(); t += 3) std::swap(indices[t + 1], indices[t + 2]);
+    for (Vec3& n : normals) n = -n;
+}
+
 SurfaceInteraction triangleInteraction(const TriangleMesh& mesh, uint32_t prim, float u, float v) {
     const uint32_t i0 = mesh.indices[3 * size_t(prim)];
     const uint32_t i1 = mesh.indices[3 * size_t(prim) + 1];

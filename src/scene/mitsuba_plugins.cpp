@@ -534,7 +534,7 @@ private:
         for (const Child& c : s.children)
             if (c.object->tag != "bsdf" && c.object->tag != "emitter" && c.object->tag != "shape")
                 unsupported(*c.object, "not supported inside a <shape>");
-        if (boolean(s, "flip_normals", false)) unsupported(s, "flip_normals is not supported yet");
+        const bool flip = boolean(s, "flip_normals", false);
         const glm::dmat4 toWorld = transform(s, "to_world");
         json shape;
         if (s.type == "obj" || s.type == "ply") {
@@ -560,6 +560,7 @@ private:
         } else if (s.type == "sphere") {
             allowOnly(s, {"to_world", "center", "radius", "flip_normals"});
             if (emitter) unsupported(s, "an emitting sphere is not supported yet (use a mesh)");
+            if (flip) unsupported(s, "flip_normals on a sphere is not supported yet (use a mesh)");
             const glm::dvec3 center = vec(s, "center", glm::dvec3(0.0));
             const double radius = number(s, "radius", 1.0);
             const glm::dmat4 m = toWorld * glm::dmat4(glm::dvec4(radius, 0, 0, 0),
@@ -581,6 +582,7 @@ private:
             unsupported(s, "this shape is not supported yet (docs/mitsuba.md lists those that are)");
         }
         if (s.type != "sphere") shape["transform"] = matrixOp(toWorld);
+        if (flip) shape["flip_normals"] = true;  // the meshes: winding and normals turned
         if (s.type != "instance")
             shape["material"] = material(bsdf ? bsdf->object.get() : nullptr,
                                          emitter ? emitter->object.get() : nullptr);

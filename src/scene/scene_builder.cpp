@@ -249,6 +249,7 @@ BuiltScene buildScene(const SceneDesc& desc, const BuildOptions& options, BuildT
                            mesh.mesh.normals.empty()) {
                     mesh.mesh.computeVertexNormals();  // in world space: after the transform
                 }
+                if (shape.flipNormals) mesh.mesh.flipOrientation();
                 if (mesh.mesh.triangleCount() == 0)
                     fail(shapeSource(desc, shape), ": the mesh has no triangles");
                 if (!hasTriangleWithArea(mesh.mesh))

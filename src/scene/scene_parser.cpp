@@ -174,8 +174,9 @@ ShapeDesc parseShape(const JsonValue& v, const ShapeContext& context) {
         s.name = s.where;
     } else {
         v.requireKeys({"type", "name", "file", "positions", "indices", "normals", "uvs",
-                       "material", "transform"});
+                       "material", "transform", "flip_normals"});
         parseMeshSource(v, folder, label, s);
+        if (auto flip = v.find("flip_normals")) s.flipNormals = flip->boolean();
     }
     if (auto name = v.find("name")) s.name = name->string();
 

@@ -118,4 +118,17 @@ TEST(TriangleMesh, BoundsAndPadding) {
 }
 
 }  // namespace
+
+TEST(TriangleMesh, FlipOrientationTurnsTheWindingAndTheNormals) {
+    TriangleMesh m;
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    m.normals = {{0, 0, 1}, {0, 0, 1}, {0.6f, 0, 0.8f}};
+    m.indices = {0, 1, 2};
+    m.flipOrientation();
+    EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 2, 1}));
+    EXPECT_EQ(m.normals[2], Vec3(-0.6f, 0, -0.8f));
+    // The geometric normal follows the winding: now -z.
+    EXPECT_LT(triangleInteraction(m, 0, 0.25f, 0.25f).Ng.z, 0.0f);
+}
+
 }  // namespace strahl

@@ -284,6 +284,14 @@ TEST(MitsubaImport, SpectrumFilesAreTheSpectraTheyList) {
                 HasSubstr("scene.xml:12: cannot open"));
 }
 
+TEST(MitsubaImport, FlipNormalsTurnsAMeshAround) {
+    const SceneDesc d = parse(scene(R"(<shape type="cube"><boolean name="flip_normals" value="true"/></shape>)"));
+    EXPECT_TRUE(d.shapes.at(1).flipNormals);
+    EXPECT_FALSE(d.shapes.at(0).flipNormals);
+    EXPECT_THAT(errorOf(scene(R"(<shape type="sphere"><boolean name="flip_normals" value="true"/></shape>)")),
+                HasSubstr("flip_normals on a sphere is not supported yet"));
+}
+
 TEST(MitsubaImport, IdsAndRefsShareOneMaterialAndLightsMap) {
     const SceneDesc d = parse(scene(R"(
   <bsdf type="diffuse" id="red"><rgb name="reflectance" value="0.8, 0.1, 0.1"/></bsdf>

@@ -34,6 +34,11 @@ struct TriangleMesh {
     // of degenerate triangles only gets +z. Call after validate().
     void computeVertexNormals();
 
+    // Turns the surface's front around: every triangle's winding reversed
+    // (the counter-clockwise side, which one-sided emitters light, is the
+    // other) and every shading normal negated.
+    void flipOrientation();
+
     // Throws strahl::Error naming `source` on a NaN/Inf coordinate, an index out
     // of range, or attribute arrays whose sizes disagree with the positions.
     void validate(const std::string& source) const;

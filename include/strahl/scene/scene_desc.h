@@ -150,6 +150,7 @@ struct ShapeDesc {
     // none (flat), or the file's and else computed (smooth).
     enum class FileNormals { AsGiven, Flat, Smooth };
     FileNormals fileNormals = FileNormals::AsGiven;
+    bool flipNormals = false;  // mesh: turn the front (winding and normals) around
     TriangleMesh inlineMesh;         // used when file is empty
     ImplicitSurfacePtr implicitSurface;    // kind == Implicit: f, compiled at parse time
     ImplicitShapeOptions implicitOptions;  // its box, cells and tolerance
