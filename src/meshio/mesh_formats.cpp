@@ -11,6 +11,7 @@ namespace strahl {
 extern const MeshFormat kObjFormat;   // obj_loader.cpp
 extern const MeshFormat kPlyFormat;   // ply_loader.cpp
 extern const MeshFormat kGltfFormat;  // gltf_loader.cpp
+extern const MeshFormat kSerializedFormat;  // serialized_loader.cpp
 
 namespace {
 
@@ -18,6 +19,7 @@ const MeshFormat* const kFormats[] = {
     &kObjFormat,
     &kPlyFormat,
     &kGltfFormat,
+    &kSerializedFormat,
 };
 
 }  // namespace

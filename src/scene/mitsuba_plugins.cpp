@@ -544,6 +544,17 @@ private:
             shape = {{"type", "mesh"},
                      {"file", file(s, "mesh file")},
                      {"normals", boolean(s, "face_normals", false) ? "flat" : "smooth"}};
+        } else if (s.type == "serialized") {
+            allowOnly(s, {"filename", "shape_index", "to_world", "face_normals", "flip_normals"});
+            const std::string name = file(s, "serialized mesh");
+            if (fs::path(name).extension() != ".serialized")
+                unsupported(s, "the file must end in .serialized (strahl picks a mesh format by its extension)");
+            const int index = integer(s, "shape_index", 0);
+            if (index < 0) fail(s.property("shape_index")->place.text(), ": shape_index must not be negative");
+            shape = {{"type", "mesh"},
+                     {"file", name},
+                     {"shape_index", index},
+                     {"normals", boolean(s, "face_normals", false) ? "flat" : "smooth"}};
         } else if (s.type == "rectangle") {
             allowOnly(s, {"to_world", "flip_normals"});
             // [-1, 1]² in the xy plane, facing +z. Mitsuba's uv is

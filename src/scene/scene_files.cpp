@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <exception>
 #include <map>
+#include <tuple>
 #include <utility>
 
 #include "scene_place.h"
@@ -26,6 +27,7 @@ enum class Content { Mesh, Cameras, MeshAndCameras, BezierPatches, HeightImage }
 struct FileRead {
     Content content = Content::Mesh;
     fs::path file;
+    uint32_t part = 0;               // which mesh of a multi-mesh file (.serialized)
     const ScenePlace* at = nullptr;  // cameras, patches, images: where errors are placed
     std::vector<size_t> users;       // indices into `shapes`
     LoadedMesh mesh;
@@ -48,9 +50,9 @@ FileRead fileRead(Content content, const fs::path& file, const ScenePlace* at) {
 // .bpt and an image named by the same path are read two ways).
 std::vector<FileRead> plan(const SceneDesc& desc, const std::vector<const ShapeDesc*>& shapes) {
     std::vector<FileRead> reads;
-    std::map<std::pair<int, fs::path>, size_t> index;
+    std::map<std::tuple<int, fs::path, uint32_t>, size_t> index;
     if (desc.camera.gltf) {
-        index[{0, desc.camera.gltf->file}] = 0;
+        index[{0, desc.camera.gltf->file, 0}] = 0;
         reads.push_back(fileRead(Content::Cameras, desc.camera.gltf->file, &desc.camera.gltf->fileAt));
     }
     for (size_t s = 0; s < shapes.size(); ++s) {
@@ -59,6 +61,7 @@ std::vector<FileRead> plan(const SceneDesc& desc, const std::vector<const ShapeD
         FileRead read;
         if (shape.kind == ShapeKind::Mesh && !shape.file.empty()) {
             read = fileRead(Content::Mesh, shape.file, nullptr);
+            read.part = shape.shapeIndex;
         } else if (shape.kind == ShapeKind::Parametric && shape.parametric.file) {
             const ParametricFile& f = *shape.parametric.file;
             const bool bezier = f.kind == ParametricFile::Kind::BezierPatches;
@@ -67,7 +70,7 @@ std::vector<FileRead> plan(const SceneDesc& desc, const std::vector<const ShapeD
         } else {
             continue;
         }
-        const auto [found, added] = index.try_emplace({key, read.file}, reads.size());
+        const auto [found, added] = index.try_emplace({key, read.file, read.part}, reads.size());
         if (added) {
             reads.push_back(std::move(read));
         } else if (reads[found->second].content == Content::Cameras) {
@@ -87,7 +90,9 @@ void readOne(const SceneDesc& desc, FileRead& r) {
         }
     };
     switch (r.content) {
-        case Content::Mesh: r.mesh = loadMeshFile(r.file); break;
+        case Content::Mesh:
+            r.mesh = r.part > 0 ? loadSerialized(r.file, r.part) : loadMeshFile(r.file);
+            break;
         case Content::Cameras: placed([&] { r.cameras = loadGltfCameras(r.file); }); break;
         case Content::MeshAndCameras:
             try {

@@ -174,9 +174,14 @@ ShapeDesc parseShape(const JsonValue& v, const ShapeContext& context) {
         s.name = s.where;
     } else {
         v.requireKeys({"type", "name", "file", "positions", "indices", "normals", "uvs",
-                       "material", "transform", "flip_normals"});
+                       "material", "transform", "flip_normals", "shape_index"});
         parseMeshSource(v, folder, label, s);
         if (auto flip = v.find("flip_normals")) s.flipNormals = flip->boolean();
+        if (auto index = v.find("shape_index")) {
+            if (s.file.extension() != ".serialized")
+                index->fail("only for a .serialized file, which may hold several meshes");
+            s.shapeIndex = static_cast<uint32_t>(index->integer(0, 1u << 30));
+        }
     }
     if (auto name = v.find("name")) s.name = name->string();
 

@@ -284,6 +284,22 @@ TEST(MitsubaImport, SpectrumFilesAreTheSpectraTheyList) {
                 HasSubstr("scene.xml:12: cannot open"));
 }
 
+TEST(MitsubaImport, SerializedShapesPickTheirMeshByShapeIndex) {
+    const fs::path dir = test::scratchDir("mitsuba-serialized");
+    test::writeFile(dir / "scene.serialized", "read when the world is built");
+    const SceneDesc d = parse(scene(R"(<shape type="serialized"><string name="filename" value="scene.serialized"/>
+        <integer name="shape_index" value="2"/></shape>)"), {}, dir / "scene.xml");
+    EXPECT_EQ(d.shapes.at(1).file.filename(), "scene.serialized");
+    EXPECT_EQ(d.shapes.at(1).shapeIndex, 2u);
+    EXPECT_EQ(d.shapes.at(1).fileNormals, ShapeDesc::FileNormals::Smooth);  // Mitsuba computes them
+    test::writeFile(dir / "mesh.bin", "x");
+    EXPECT_THAT(test::errorMessage([&] {
+                    parse(scene(R"(<shape type="serialized"><string name="filename" value="mesh.bin"/></shape>)"),
+                          {}, dir / "scene.xml");
+                }),
+                HasSubstr("the file must end in .serialized"));
+}
+
 TEST(MitsubaImport, FlipNormalsTurnsAMeshAround) {
     const SceneDesc d = parse(scene(R"(<shape type="cube"><boolean name="flip_normals" value="true"/></shape>)"));
     EXPECT_TRUE(d.shapes.at(1).flipNormals);

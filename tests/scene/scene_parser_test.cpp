@@ -355,7 +355,7 @@ TEST(SceneParser, MeshFileMustBeARegularObjOrPlyFile) {
         return std::string("no error");
     };
     EXPECT_EQ(errorFor("mesh.stl"), scene.string() + ": /shapes/0/file: 'mesh.stl' is not a " +
-                                        "supported mesh format (extensions: .obj, .ply, .gltf, .glb)");
+                                        "supported mesh format (extensions: .obj, .ply, .gltf, .glb, .serialized)");
     EXPECT_EQ(errorFor("folder.obj"), scene.string() +
                                           ": /shapes/0/file: 'folder.obj' is not a regular file " +
                                           "(looked at " + (dir / "folder.obj").string() + ")");
@@ -429,7 +429,7 @@ TEST(SceneParser, UnknownKeysNameTheObjectAndTheAllowedKeys) {
               "roughness, roughness_u, roughness_v, distribution, masking)");
     EXPECT_EQ(errorOf(triangleWith(R"("faces": [0, 1, 2])")),
               "scene.json: /shapes/0: unknown key 'faces' (allowed: type, name, file, positions, "
-              "indices, normals, uvs, material, transform, flip_normals)");
+              "indices, normals, uvs, material, transform, flip_normals, shape_index)");
     EXPECT_EQ(
         errorWith(R"("lights": [{"type": "point", "position": [0,0,0], "direction": [1,0,0]}])"),
         "scene.json: /lights/0: unknown key 'direction' (allowed: type, position, intensity)");

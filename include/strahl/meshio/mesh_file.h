@@ -55,6 +55,9 @@ LoadedMesh loadPly(const std::filesystem::path& file);
 // glTF 2.0, .gltf or .glb (docs/mesh-files.md): the default scene flattened into
 // world space, materials with source Gltf, uvs stored as (u, 1 - v).
 LoadedMesh loadGltf(const std::filesystem::path& file);
+// Mitsuba's .serialized (docs/mesh-files.md): mesh `shapeIndex` of the file
+// (0 is the first); positions, normals and uvs (v turned up), no materials.
+LoadedMesh loadSerialized(const std::filesystem::path& file, uint32_t shapeIndex = 0);
 
 // The same loaders on bytes already in memory (the path loaders above read the
 // file and call these; the fuzz targets in fuzz/ call them directly). `file`
@@ -63,6 +66,8 @@ LoadedMesh loadGltf(const std::filesystem::path& file);
 LoadedMesh loadObjFromMemory(std::string_view data, const std::filesystem::path& file);
 LoadedMesh loadPlyFromMemory(std::string_view data, const std::filesystem::path& file);
 LoadedMesh loadGltfFromMemory(std::string_view data, const std::filesystem::path& file);
+LoadedMesh loadSerializedFromMemory(std::string_view data, const std::filesystem::path& file,
+                                    uint32_t shapeIndex = 0);
 
 // Recoverable problems (a missing .mtl, an unknown material, an attribute only
 // some corners have) are warnings, not errors. They go to the handler set here,

@@ -151,6 +151,7 @@ struct ShapeDesc {
     enum class FileNormals { AsGiven, Flat, Smooth };
     FileNormals fileNormals = FileNormals::AsGiven;
     bool flipNormals = false;  // mesh: turn the front (winding and normals) around
+    uint32_t shapeIndex = 0;   // mesh file: which mesh of a multi-mesh file (.serialized)
     TriangleMesh inlineMesh;         // used when file is empty
     ImplicitSurfacePtr implicitSurface;    // kind == Implicit: f, compiled at parse time
     ImplicitShapeOptions implicitOptions;  // its box, cells and tolerance
