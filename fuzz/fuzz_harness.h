@@ -103,6 +103,14 @@ inline void runPly(std::string_view input) {
     (void)mesh;
 }
 
+// The input is a .serialized file; its first and its second mesh are read.
+inline void runSerialized(std::string_view input) {
+    for (uint32_t index : {0u, 1u}) {
+        const LoadedMesh mesh = loadSerializedFromMemory(input, scratch() / "fuzz.serialized", index);
+        (void)mesh;
+    }
+}
+
 // The input is an OBJ file, optionally followed by a line "@mtl" and the text of
 // a material library: that part is written to <scratch>/m.mtl (which the OBJ
 // part names with "mtllib m.mtl"), so one input covers both parsers.
