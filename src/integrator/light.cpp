@@ -4,6 +4,7 @@
 #include "strahl/integrator/light.h"
 
 #include <cmath>
+#include <map>
 
 #include "strahl/core/error.h"
 
@@ -42,6 +43,10 @@ float lightPower(const Light& light, const Bounds3& sceneBounds) {
 }
 
 LightSet::LightSet(std::vector<Light> lights, const Bounds3& sceneBounds)
+    : LightSet(std::move(lights), sceneBounds, LightSelection::Power, {}) {}
+
+LightSet::LightSet(std::vector<Light> lights, const Bounds3& sceneBounds, LightSelection selection,
+                   const std::vector<uint32_t>& emitterOf)
     : lights_(std::move(lights)) {
     if (lights_.empty()) return;
     if (lights_.size() > UINT32_MAX) fail("too many lights: ", lights_.size());
@@ -52,6 +57,23 @@ LightSet::LightSet(std::vector<Light> lights, const Bounds3& sceneBounds)
         if (!std::isfinite(powers[i]) || powers[i] < 0.0f)
             fail("light ", i, ": power ", powers[i], " is not finite and >= 0");
         if (lights_[i].isInfinite()) infinite_.push_back(static_cast<uint32_t>(i));
+    }
+    if (selection == LightSelection::UniformEmitters) {
+        if (emitterOf.size() != lights_.size())
+            fail("light selection: ", emitterOf.size(), " emitter ids for ", lights_.size(), " lights");
+        // Each emitter 1 / emitters; within one, its lights by power (evenly if
+        // they carry none): weight_i = power_i / (power of i's emitter) / emitters.
+        std::map<uint32_t, std::pair<double, size_t>> emitters;  // id -> (power, lights)
+        for (size_t i = 0; i < lights_.size(); ++i) {
+            auto& e = emitters[emitterOf[i]];
+            e.first += powers[i];
+            ++e.second;
+        }
+        for (size_t i = 0; i < lights_.size(); ++i) {
+            const auto& [power, count] = emitters[emitterOf[i]];
+            const double share = power > 0.0 ? powers[i] / power : 1.0 / double(count);
+            powers[i] = static_cast<float>(share / double(emitters.size()));
+        }
     }
     distribution_ = Distribution1D(std::move(powers));  // all zero: uniform
 }

@@ -57,6 +57,11 @@ void World::prepareLights() {
         sky.radiance = background;
         all.push_back(sky);
     }
+    // The emitter of each light: its own for the scene's lights and the sky,
+    // one per emitting shape (and instance) for triangle lights.
+    std::vector<uint32_t> emitterOf(all.size());
+    for (size_t i = 0; i < all.size(); ++i) emitterOf[i] = static_cast<uint32_t>(i);
+    auto emitters = static_cast<uint32_t>(all.size());
     emitterOffset_.clear();
     areaLightOfPrim_.clear();
     // patternMean per material, computed on first use (NaN: not yet).
@@ -69,6 +74,7 @@ void World::prepareLights() {
         for (uint32_t m : shape.materialOfSlot) emits |= lightSampled(materials[m], shape);
         if (!emits) return;
         const TriangleMesh& mesh = shape.mesh;
+        const uint32_t emitter = emitters++;
         const auto offset = static_cast<uint32_t>(areaLightOfPrim_.size());
         emitterOffset_[emitterKey(instID, geomID)] = offset;
         areaLightOfPrim_.resize(areaLightOfPrim_.size() + mesh.triangleCount(), kInvalidId);
@@ -106,6 +112,7 @@ void World::prepareLights() {
                      " instances");
             areaLightOfPrim_[offset + t] = static_cast<uint32_t>(all.size());
             all.emplace_back(light);
+            emitterOf.push_back(emitter);
         }
     };
     for (size_t g = 0; g < shapes.size(); ++g)
@@ -117,7 +124,7 @@ void World::prepareLights() {
         for (size_t g = 0; g < proto.shapes.size(); ++g)
             addShape(proto.shapes[g], instID, static_cast<uint32_t>(g), &inst.objectToWorld);
     }
-    lightSet = LightSet(std::move(all), bounds());
+    lightSet = LightSet(std::move(all), bounds(), lightSelection, emitterOf);
     lightsPrepared_ = true;
 }
 

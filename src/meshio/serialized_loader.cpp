@@ -113,7 +113,8 @@ size_t meshOffset(std::string_view bytes, uint16_t version, uint32_t index, cons
     const size_t at = bytes.size() - 4 - size_t(count - index) * entry;
     const uint64_t offset =
         version == 4 ? readLittle<uint64_t>(bytes, at) : readLittle<uint32_t>(bytes, at);
-    if (offset + 4 > bytes.size()) fail(name, ": the offset of mesh ", index, " is outside the file");
+    // (not offset + 4 > size: a corrupt offset near 2^64 would wrap around)
+    if (offset > bytes.size() - 4) fail(name, ": the offset of mesh ", index, " is outside the file");
     return size_t(offset);
 }
 
@@ -160,7 +161,8 @@ LoadedMesh loadSerializedFromMemory(std::string_view bytes, const fs::path& file
     if (flags & kHasColors) in.reals(3 * vertices, doubles, "vertex colours");  // not used
     in.need(12 * triangles, "triangle indices");
     mesh.indices.resize(3 * triangles);
-    std::memcpy(mesh.indices.data(), data.data() + in.position(), 12 * triangles);
+    if (triangles > 0)  // (an empty vector's data() may be null, which memcpy must not see)
+        std::memcpy(mesh.indices.data(), data.data() + in.position(), 12 * triangles);
     mesh.validate(name);
     return result;
 }

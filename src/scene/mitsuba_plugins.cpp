@@ -139,6 +139,8 @@ public:
         }
         if (!sensor) fail(root.place.text(), ": <scene>: no <sensor> (strahl needs a camera)");
         if (!integrator) render_["integrator"] = "path", render_["max_depth"] = 1024;
+        // Mitsuba picks an emitter uniformly, then a point on it by area.
+        render_["light_selection"] = "uniform";
         if (!materials_.empty()) doc_["materials"] = materials_;
         if (!groups_.empty()) doc_["groups"] = groups_;
         if (!lights_.empty()) doc_["lights"] = lights_;

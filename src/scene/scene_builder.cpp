@@ -326,6 +326,7 @@ BuiltScene buildScene(const SceneDesc& desc, const BuildOptions& options, BuildT
         }
     }
     if (timings) timings->bvhSeconds = secondsSince(bvhStart);
+    world.lightSelection = desc.render.lightSelection;
     world.prepareLights();
     return built;
 }

@@ -26,21 +26,9 @@ namespace fs = std::filesystem;
 struct MitsubaCase {
     const char* group;
     const char* name;      // the scene's file stem, test_<name>
-    // "" : renders and passes. kVarianceGap: renders, unbiased, but with more
-    // variance than Mitsuba's at Mitsuba's sample count, so the z-test (which
-    // takes the reference's variance for the render's) fails a few values;
-    // at least kVarianceGapFraction must pass. Else: a part of its one error.
+    // "" : renders and passes. Else: a part of its one error.
     const char* expected;
 };
-
-// various_emitters: 4 delta lights and 4 textured area lights. strahl picks
-// a light by power, which gives the spot that lights the middle of the floor
-// 5 % of the choices where Mitsuba's uniform choice gives it 1/8; there its
-// per-sample variance is 3x Mitsuba's and 0.3 % of the values fail. Rendered
-// at 65536 spp the same pixels agree with the reference (docs/mitsuba.md).
-// Many-light sampling (issue 20) is the fix.
-constexpr const char* kVarianceGap = "variance gap";
-constexpr double kVarianceGapFraction = 0.995;
 
 // Why each unsupported scene fails is in docs/mitsuba.md ("Mitsuba's render tests").
 const MitsubaCase kCases[] = {
@@ -75,7 +63,7 @@ const MitsubaCase kCases[] = {
     {"projector", "projector_textured_direct", ""},
     {"spot_light", "spot_direct", ""},
     {"texture_interp", "texture_interp_direct", ""},
-    {"various_emitters", "various_emitters_ptracer", kVarianceGap},
+    {"various_emitters", "various_emitters_ptracer", ""},
 };
 
 fs::path scenes() { return test::sharedData() / "mitsuba-tests/tests/scenes"; }
@@ -99,8 +87,7 @@ TEST_P(MitsubaRenderTest, PassesMitsubasTestOrFailsWithOneClearError) {
     const test::RunResult r = test::runStrahl("render " + scene.string() + " --spp " +
                                               std::to_string(spp) + " --seed 0 --exr-float -q -o " +
                                               out.string());
-    const bool varianceGap = c.expected == kVarianceGap;
-    if (*c.expected && !varianceGap) {
+    if (*c.expected) {
         EXPECT_EQ(r.status, 1) << r.err;
         EXPECT_TRUE(test::contains(r.err, c.expected)) << r.err;
         EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
@@ -111,10 +98,6 @@ TEST_P(MitsubaRenderTest, PassesMitsubasTestOrFailsWithOneClearError) {
     const RgbImage mean = readRgbImage(out);
     const ZTestResult z = zTest(mean, spp, reference, variance);
     std::printf("%s/%s: %s\n", c.group, c.name, z.summary().c_str());
-    if (varianceGap) {
-        EXPECT_GE(z.passingFraction(), kVarianceGapFraction) << z.summary();
-        return;
-    }
     if (!z.passed) {
         const fs::path errors = dir / "errors.exr";
         writeZTestImage(errors, mean, reference, z);

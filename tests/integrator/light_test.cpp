@@ -512,6 +512,20 @@ TEST(LightSet, AllZeroPowersFallBackToUniformAndEmptyChoosesNothing) {
     EXPECT_FALSE(LightSet({}, unitBox()).choose(0.5f));
 }
 
+TEST(LightSet, UniformEmitterSelectionSharesEachEmitterByPower) {
+    // Three lights, the last two one emitter (two triangles of a lamp): the
+    // first gets 1/2, the lamp 1/2 split 1 : 3 by power.
+    const std::vector<Light> lights = {pointLight(Vec3(0), 1.0f), pointLight(Vec3(0), 10.0f),
+                                       pointLight(Vec3(0), 30.0f)};
+    const LightSet uniform(lights, unitBox(), LightSelection::UniformEmitters, {0, 1, 1});
+    EXPECT_FLOAT_EQ(uniform.pmf(0), 0.5f);
+    EXPECT_FLOAT_EQ(uniform.pmf(1), 0.125f);
+    EXPECT_FLOAT_EQ(uniform.pmf(2), 0.375f);
+    const LightSet power(lights, unitBox(), LightSelection::Power, {0, 1, 1});
+    EXPECT_FLOAT_EQ(power.pmf(0), 1.0f / 41.0f);  // the emitters do not matter
+    EXPECT_THROW(LightSet(lights, unitBox(), LightSelection::UniformEmitters, {0, 1}), Error);
+}
+
 TEST(LightSet, RejectsLightsTheSamplersCannotHandle) {
     const SpotLight spot = spotLight(Vec3(0), 1.0f, 0.5f, 0.9f);  // cosines out of order
     EXPECT_THROW(LightSet({spot}, unitBox()), Error);

@@ -34,6 +34,7 @@ const FuzzTarget kTargets[] = {
     {"fuzz_scene_json", &fuzz::runSceneJson},
     {"fuzz_mitsuba_xml", &fuzz::runMitsubaXml},
     {"fuzz_ply", &fuzz::runPly},
+    {"fuzz_serialized", &fuzz::runSerialized},
     {"fuzz_obj", &fuzz::runObj},
     {"fuzz_gltf", &fuzz::runGltf},
     {"fuzz_formula", &fuzz::runFormula},
@@ -107,6 +108,21 @@ TEST(FuzzRegressionInputs, DevicesAreNotRegularFiles) {
     EXPECT_TRUE(test::contains(
         test::errorMessage([&] { buildWorld(parseSceneText(test::readFile(scene), scene), naive); }),
         expected));
+}
+
+// A serialized mesh with no triangles copied its (empty) index array with a
+// null destination pointer, undefined behaviour even for 0 bytes.
+TEST(FuzzRegressionInputs, ASerializedMeshWithoutTrianglesIsNoUndefinedBehaviour) {
+    const fs::path input = test::sourceDir() / "tests/data/fuzz/fuzz_serialized/no_triangles.serialized";
+    ASSERT_TRUE(fs::exists(input));
+    replay(targetNamed("fuzz_serialized"), input);  // UBSan checks the copy in the sanitizer build
+}
+
+// A mesh offset near 2^64 in the dictionary passed the bounds check once 4
+// was added to it (unsigned wrap-around) and was read far outside the file.
+TEST(FuzzRegressionInputs, ASerializedOffsetPastTheFileIsAnError) {
+    const fs::path input = test::sourceDir() / "tests/data/fuzz/fuzz_serialized/offset_wraps_around.serialized";
+    EXPECT_TRUE(test::contains(replay(targetNamed("fuzz_serialized"), input), "is outside the file"));
 }
 
 INSTANTIATE_TEST_SUITE_P(Targets, FuzzRegression, testing::ValuesIn(kTargets),

@@ -75,8 +75,14 @@ Color triangleLe(const Light& light, const Vec3& w);
 // point of the sphere's area 4 pi R^2).
 float lightPower(const Light& light, const Bounds3& sceneBounds);
 
+// How next-event estimation picks a light (docs/lights.md, "Choosing a light"):
+// in proportion to its power, or each emitter (a light of the scene, the sky,
+// an emitting shape as a whole) equally often and, within an emitting shape,
+// its triangles in proportion to their power (Mitsuba's choice).
+enum class LightSelection { Power, UniformEmitters };
+
 // The lights of a scene and the discrete distribution that picks one per
-// next-event estimate, proportional to power (uniform if every power is 0).
+// next-event estimate (uniform if every power is 0).
 class LightSet {
 public:
     LightSet() = default;
@@ -85,6 +91,10 @@ public:
     // cosines out of order, an angular radius outside [0, pi/2], an environment
     // light without a map or with a non-rotation worldToEnvironment.
     LightSet(std::vector<Light> lights, const Bounds3& sceneBounds);
+    // With a selection: emitterOf[i] names the emitter light i belongs to
+    // (lights of one emitting shape share it); used by UniformEmitters.
+    LightSet(std::vector<Light> lights, const Bounds3& sceneBounds, LightSelection selection,
+             const std::vector<uint32_t>& emitterOf);
 
     const std::vector<Light>& lights() const { return lights_; }
     bool empty() const { return lights_.empty(); }

@@ -87,6 +87,7 @@ struct RenderDesc {
     int maxDepth = 8;            // path
     bool russianRoulette = true; // path
     int russianRouletteDepth = 2;  // path: the first bounce roulette may end a path after
+    LightSelection lightSelection = LightSelection::Power;  // direct, path: next-event estimation
     // path: Cycles-style sample clamping, biased and off (0) by default: the
     // light of one sample after one reflection (direct) or more (indirect) is
     // scaled down so its largest channel is at most this.
