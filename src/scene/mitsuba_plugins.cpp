@@ -331,70 +331,12 @@ private:
     json bsdfMaterial(const Object& b) {
         if (b.type == "twosided") {
             // strahl's opaque materials reflect on both sides already.
-            const Child* inner = child(b, "bsdf");
-            if (!inner) unsupported(b, "needs a nested <bsdf>");
             allowOnly(b, {});
-            return bsdfMaterial(*inner->object);
+            return nestedMaterial(b);
         }
-        if (b.type == "normalmap") {
-            // Mitsuba's tangent-space normal map, n = 2 texel - 1 in the frame
-            // of dp/du: strahl's normal_map. A raw bitmap is read as data; a
-            // rawconstant (0.5, 0.5, 1) is the identity.
-            const Child* inner = child(b, "bsdf");
-            if (!inner) unsupported(b, "needs a nested <bsdf>");
-            allowOnly(b, {"normalmap"});
-            json m = bsdfMaterial(*inner->object);
-            const Child* map = nullptr;
-            for (const Child& c : b.children)
-                if (c.object->tag == "texture") map = &c;
-            if (!map) unsupported(b, "needs a <texture name=\"normalmap\">");
-            const Object& t = *map->object;
-            if (t.type == "rawconstant") {
-                allowOnly(t, {"value"});
-                if (vec(t, "value", {0.5, 0.5, 1.0}) != glm::dvec3(0.5, 0.5, 1.0))
-                    unsupported(t, "a constant normal map other than the identity (0.5, 0.5, 1) is not supported");
-                return m;
-            }
-            if (t.type != "bitmap" || !boolean(t, "raw", false))
-                unsupported(t, "a normal map must be a bitmap with raw = true");
-            json normalMap = texture(t, /*rawAllowed=*/true);
-            normalMap["shadowing"] = true;  // Mitsuba's normalmap shadows the terminator
-            m["normal_map"] = normalMap;
-            return m;
-        }
-        if (b.type == "bumpmap") {
-            // Mitsuba's bump map: the luminance of a raw bitmap times `scale`
-            // as a height over (u, v), with its terminator shadowing.
-            const Child* inner = child(b, "bsdf");
-            if (!inner) unsupported(b, "needs a nested <bsdf>");
-            allowOnly(b, {"scale"});
-            json m = bsdfMaterial(*inner->object);
-            const Child* map = nullptr;
-            for (const Child& c : b.children)
-                if (c.object->tag == "texture") map = &c;
-            if (!map) unsupported(b, "needs a <texture>");
-            const Object& t = *map->object;
-            if (t.type != "bitmap" || !boolean(t, "raw", false))
-                unsupported(t, "a bump map must be a bitmap with raw = true (strahl reads heights as data)");
-            json bump = texture(t, /*rawAllowed=*/true);
-            bump["scale"] = number(b, "scale", 1.0);
-            bump["shadowing"] = true;
-            m["bump_map"] = bump;
-            return m;
-        }
-        if (b.type == "mask") {
-            // Mitsuba's mask passes a ray through with probability 1 - opacity;
-            // strahl's opacity cuts the same holes out of the surface.
-            const Child* inner = child(b, "bsdf");
-            if (!inner) unsupported(b, "needs a nested <bsdf>");
-            allowOnly(b, {"opacity"});
-            json m = bsdfMaterial(*inner->object);
-            if (m.contains("opacity")) unsupported(b, "a mask inside a mask is not supported");
-            json opacity = color(b, "opacity", 0.5);
-            if (opacity.is_array()) unsupported(b, "the opacity must be one number or a texture");
-            m["opacity"] = opacity;
-            return m;
-        }
+        if (b.type == "normalmap") return normalMapMaterial(b);
+        if (b.type == "bumpmap") return bumpMapMaterial(b);
+        if (b.type == "mask") return maskMaterial(b);
         if (b.type == "diffuse") {
             allowOnly(b, {"reflectance"});
             return {{"type", "diffuse"}, {"color", color(b, "reflectance", 0.5)}};
@@ -405,6 +347,70 @@ private:
         if (base == "dielectric") return dielectric(b, rough);
         if (base == "plastic") return plastic(b, rough);
         unsupported(b, "this BSDF is not supported yet (docs/mitsuba.md lists those that are)");
+    }
+
+    // --- Mitsuba's adapters: one nested BSDF, and what they add to it ------
+    json nestedMaterial(const Object& b) {
+        const Child* inner = child(b, "bsdf");
+        if (!inner) unsupported(b, "needs a nested <bsdf>");
+        return bsdfMaterial(*inner->object);
+    }
+
+    // The adapter's <texture>, which must be a bitmap read raw (as data):
+    // strahl reads normal and height maps without sRGB decoding.
+    json rawBitmap(const Object& b, const std::string& what) {
+        const Child* map = nullptr;
+        for (const Child& c : b.children)
+            if (c.object->tag == "texture") map = &c;
+        if (!map) unsupported(b, "needs a <texture>");
+        const Object& t = *map->object;
+        if (t.type != "bitmap" || !boolean(t, "raw", false))
+            unsupported(t, what + " must be a bitmap with raw = true (strahl reads it as data)");
+        return texture(t, /*rawAllowed=*/true);
+    }
+
+    // Mitsuba's tangent-space normal map, n = 2 texel - 1 in the frame of
+    // dp/du: strahl's normal_map, with the terminator shadowing Mitsuba's
+    // normalmap applies. A rawconstant (0.5, 0.5, 1) is the identity.
+    json normalMapMaterial(const Object& b) {
+        allowOnly(b, {"normalmap"});
+        json m = nestedMaterial(b);
+        for (const Child& c : b.children) {
+            const Object& t = *c.object;
+            if (t.tag != "texture" || t.type != "rawconstant") continue;
+            allowOnly(t, {"value"});
+            if (vec(t, "value", {0.5, 0.5, 1.0}) != glm::dvec3(0.5, 0.5, 1.0))
+                unsupported(t, "a constant normal map other than the identity (0.5, 0.5, 1) is not supported");
+            return m;
+        }
+        json normalMap = rawBitmap(b, "a normal map");
+        normalMap["shadowing"] = true;
+        m["normal_map"] = normalMap;
+        return m;
+    }
+
+    // Mitsuba's bump map: the luminance of the bitmap times `scale` as a
+    // height over (u, v), with its terminator shadowing.
+    json bumpMapMaterial(const Object& b) {
+        allowOnly(b, {"scale"});
+        json m = nestedMaterial(b);
+        json bump = rawBitmap(b, "a bump map");
+        bump["scale"] = number(b, "scale", 1.0);
+        bump["shadowing"] = true;
+        m["bump_map"] = bump;
+        return m;
+    }
+
+    // Mitsuba's mask passes a ray through with probability 1 - opacity;
+    // strahl's opacity cuts the same holes out of the surface.
+    json maskMaterial(const Object& b) {
+        allowOnly(b, {"opacity"});
+        json m = nestedMaterial(b);
+        if (m.contains("opacity")) unsupported(b, "a mask inside a mask is not supported");
+        json opacity = color(b, "opacity", 0.5);
+        if (opacity.is_array()) unsupported(b, "the opacity must be one number or a texture");
+        m["opacity"] = opacity;
+        return m;
     }
 
     // Mitsuba's microfacet BSDFs: its `distribution` (beckmann by default),
