@@ -94,6 +94,12 @@ Bsdf Bsdf::dielectric(float eta, float alpha, const Color& tint, MicrofacetModel
     return Bsdf(DielectricModel{MicrofacetDistribution(alpha, alpha, microfacets), eta, tint}, tint);
 }
 
+Bsdf Bsdf::thinDielectric(float eta, const Color& tint) {
+    requirePositive("thinDielectric", "eta", eta);
+    requireColor("thinDielectric", "tint", tint);
+    return Bsdf(ThinDielectricModel{eta, tint}, tint);
+}
+
 Bsdf Bsdf::plastic(const Color& kd, float eta, float alpha, const PlasticCoat& coat) {
     requireColor("plastic", "kd", kd);
     requirePositive("plastic", "eta", eta);

@@ -346,6 +346,11 @@ private:
         if (base == "conductor") return conductor(b, rough);
         if (base == "dielectric") return dielectric(b, rough);
         if (base == "plastic") return plastic(b, rough);
+        if (b.type == "thindielectric") {
+            allowOnly(b, {"int_ior", "ext_ior", "specular_reflectance", "specular_transmittance"});
+            requireUntinted(b, {"specular_reflectance", "specular_transmittance"});
+            return {{"type", "thin_dielectric"}, {"ior", relativeIor(b, "bk7")}};
+        }
         unsupported(b, "this BSDF is not supported yet (docs/mitsuba.md lists those that are)");
     }
 

@@ -10,6 +10,7 @@
 
 #include "bsdf/bsdf_test_support.h"
 #include "strahl/bsdf/bsdf.h"
+#include "strahl/bsdf/fresnel.h"
 #include "strahl/bsdf/local_frame.h"
 #include "strahl/core/error.h"
 #include "test_support.h"
@@ -191,6 +192,29 @@ TEST(BsdfProperties, MetallicRoughnessLimitsAreItsLobes) {
     const auto s = coat.sample(Vec3(0, 0, 1), 0.5f, Vec2(0.5f));
     ASSERT_TRUE(s && s->specular);
     EXPECT_NEAR(s->f.r * s->wi.z / s->pdf, 0.04f, 1e-6f);
+}
+
+TEST(ThinDielectric, ReflectsTheSheetsSummedReflectanceAndPassesStraightThrough) {
+    const Bsdf sheet = Bsdf::thinDielectric(1.5f, Color(1.0f, 0.5f, 1.0f));
+    const Vec3 wo = glm::normalize(Vec3(0.3f, -0.2f, 0.9f));
+    const float r = fresnelDielectric(wo.z, 1.5f), summed = 2.0f * r / (1.0f + r);
+    const auto reflected = sheet.sample(wo, 0.5f * summed, Vec2(0.5f));
+    ASSERT_TRUE(reflected);
+    EXPECT_EQ(reflected->wi, Vec3(-wo.x, -wo.y, wo.z));
+    EXPECT_NEAR(reflected->pdf, summed, 1e-6f);
+    const auto through = sheet.sample(wo, 0.99f, Vec2(0.5f));
+    ASSERT_TRUE(through);
+    EXPECT_EQ(through->wi, -wo);  // undeviated
+    EXPECT_TRUE(through->transmission);
+    EXPECT_EQ(through->eta, 1.0f);
+    // Weight: the tint, as the lobes are chosen by their share.
+    const Color weight = through->f * std::abs(through->wi.z) / through->pdf;
+    EXPECT_NEAR(weight.g, 0.5f, 1e-6f);
+    // At normal incidence, glass 1.5: R = 0.04, R' = 0.08 / 1.04.
+    const auto normal = sheet.sample(Vec3(0, 0, 1), 0.0f, Vec2(0.5f));
+    EXPECT_NEAR(normal->pdf, 0.08f / 1.04f, 1e-6f);
+    EXPECT_TRUE(sheet.isSpecular());
+    EXPECT_FALSE(sheet.isOpaque());
 }
 
 }  // namespace

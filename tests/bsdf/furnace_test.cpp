@@ -40,6 +40,7 @@ TEST(WhiteFurnace, LosslessBsdfsReflectEverything) {
         {"perfect mirror", Bsdf::conductor(Color(0.0f), Color(1.0f), 0.0f, 0.0f)},
         {"smooth glass 1.5", Bsdf::dielectric(1.5f, 0.0f)},
         {"smooth glass 1.33", Bsdf::dielectric(1.33f, 0.0f)},
+        {"thin glass 1.5", Bsdf::thinDielectric(1.5f)},
         {"smooth plastic white", Bsdf::plastic(Color(1.0f), 1.5f, 0.0f)},
         {"smooth plastic white eta 2", Bsdf::plastic(Color(1.0f), 2.0f, 0.0f)},
         {"smooth metallic-roughness white", Bsdf::metallicRoughness(Color(1.0f), 0.0f, 0.0f)},

@@ -15,9 +15,9 @@ namespace {
 
 TEST(MaterialKinds, NamesFollowTheVariantOrder) {
     const auto names = kindNames<MaterialKind>();
-    const std::vector<std::string_view> expected = {"diffuse",    "phong",   "blinn",
-                                                    "conductor",  "dielectric", "plastic",
-                                                    "metallic_roughness", "emissive"};
+    const std::vector<std::string_view> expected = {
+        "diffuse",         "phong",   "blinn",              "conductor", "dielectric",
+        "thin_dielectric", "plastic", "metallic_roughness", "emissive"};
     EXPECT_EQ(std::vector<std::string_view>(names.begin(), names.end()), expected);
 }
 
@@ -43,7 +43,8 @@ TEST(MaterialKinds, KindNameOfAMaterial) {
 TEST(MaterialKinds, ForEachTextureVisitsTheKindsTexturesThenOpacityEmissionNormalAndBumpMap) {
     const std::vector<std::pair<MaterialKind, int>> cases = {
         {DiffuseMaterial{}, 1},    {PhongMaterial{}, 1},     {BlinnMaterial{}, 1},
-        {ConductorMaterial{}, 2},  {DielectricMaterial{}, 2}, {PlasticMaterial{}, 2},
+        {ConductorMaterial{}, 2},  {DielectricMaterial{}, 2}, {ThinDielectricMaterial{}, 1},
+        {PlasticMaterial{}, 2},
         {MetallicRoughnessMaterial{}, 3}, {EmissiveMaterial{}, 0}};
     for (const auto& [kind, own] : cases) {
         Material m;

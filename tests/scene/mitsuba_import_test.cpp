@@ -18,6 +18,7 @@
 #include "strahl/material/dielectric.h"
 #include "strahl/material/diffuse.h"
 #include "strahl/material/plastic.h"
+#include "strahl/material/thin_dielectric.h"
 #include "strahl/scene/scene_builder.h"
 #include "strahl/scene/scene_desc.h"
 #include "strahl/scene/scene_document.h"
@@ -197,6 +198,12 @@ TEST(MitsubaImport, DielectricsAndPlasticsTakeTheRatioOfNamedIors) {
                 HasSubstr("strahl's interfaces need a relative index in [1.0001, 4]"));
     EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="roughdielectric"><float name="alpha_u" value="0.1"/><float name="alpha_v" value="0.2"/></bsdf></shape>)")),
                 HasSubstr("an anisotropic roughness (alpha_u, alpha_v) is only supported on conductors"));
+}
+
+TEST(MitsubaImport, AThinDielectricIsAThinSheetOfTheRatioOfIors) {
+    const auto sheet = cubeMaterial<ThinDielectricMaterial>(R"(<bsdf type="thindielectric">
+        <string name="int_ior" value="pyrex"/></bsdf>)");
+    EXPECT_FLOAT_EQ(sheet.ior, float(1.470 / 1.000277));
 }
 
 TEST(MitsubaImport, AMaskIsTheOpacityOfItsNestedBsdf) {

@@ -57,6 +57,9 @@ public:
     // both reflection and transmission (1 for clear glass).
     static Bsdf dielectric(float eta, float alpha, const Color& tint = Color(1.0f),
                            MicrofacetModel microfacets = {});
+    // A thin sheet of dielectric of index eta: light reflects with the sheet's
+    // summed reflectance or passes straight through (bsdf_models.h).
+    static Bsdf thinDielectric(float eta, const Color& tint = Color(1.0f));
     // Lambertian base under a smooth or rough dielectric coat (plastic); kd is
     // clamped to [0, 1] (the base-coat inter-reflection series needs kd < 1/F).
     // A rough coat lets through what `coat.rough` tabulates (made for the same

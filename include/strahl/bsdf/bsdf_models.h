@@ -83,6 +83,22 @@ struct DielectricModel {
     std::optional<BsdfSample> sample(const Vec3& wo, float uLobe, const Vec2& u) const;
 };
 
+// A thin sheet of dielectric: delta reflection with the sheet's summed
+// reflectance R' = 2R / (1 + R), delta transmission straight through (wi = -wo)
+// with 1 - R'; both tinted. No radiance scaling: the light leaves in the
+// medium it came from.
+struct ThinDielectricModel {
+    float eta = 1.5f;
+    Color tint{1.0f};
+
+    static constexpr bool kOpaque = false;
+    bool specular() const { return true; }
+    float reflectance(float cosTheta) const;
+    Color f(const Vec3&, const Vec3&) const { return Color(0.0f); }
+    float pdf(const Vec3&, const Vec3&) const { return 0.0f; }
+    std::optional<BsdfSample> sample(const Vec3& wo, float uLobe, const Vec2& u) const;
+};
+
 // Lambertian base under a smooth (delta) or rough (microfacet) dielectric coat.
 struct PlasticModel {
     MicrofacetDistribution microfacets;
@@ -134,6 +150,7 @@ namespace strahl {
 using BsdfModel =
     std::variant<bsdf_models::BlackModel, bsdf_models::LambertModel, bsdf_models::PhongModel,
                  bsdf_models::ConductorModel, bsdf_models::DielectricModel,
-                 bsdf_models::PlasticModel, bsdf_models::MetallicRoughnessModel>;
+                 bsdf_models::ThinDielectricModel, bsdf_models::PlasticModel,
+                 bsdf_models::MetallicRoughnessModel>;
 
 }  // namespace strahl

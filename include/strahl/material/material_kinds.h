@@ -16,11 +16,13 @@
 #include "strahl/material/metallic_roughness.h"
 #include "strahl/material/phong.h"
 #include "strahl/material/plastic.h"
+#include "strahl/material/thin_dielectric.h"
 
 namespace strahl {
 
 using MaterialKind =
     std::variant<DiffuseMaterial, PhongMaterial, BlinnMaterial, ConductorMaterial,
-                 DielectricMaterial, PlasticMaterial, MetallicRoughnessMaterial, EmissiveMaterial>;
+                 DielectricMaterial, ThinDielectricMaterial, PlasticMaterial,
+                 MetallicRoughnessMaterial, EmissiveMaterial>;
 
 }  // namespace strahl
