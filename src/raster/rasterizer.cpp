@@ -357,6 +357,9 @@ void requireRasterizable(const World& world) {
         if (!shape.isMesh())
             fail("the rasterizer draws triangle meshes only, but shape '", shape.name, "' is ",
                  shape.user->describe(), "; use --algorithm raytrace for it");
+        else if (shape.cutout)
+            fail("the rasterizer draws solid triangles only, but shape '", shape.name,
+                 "' has a material with an opacity (a cut-out); use --algorithm raytrace for it");
     if (!world.instances.empty())
         fail("the rasterizer draws top-level meshes only, but the scene has ",
              world.instances.size(), " instance(s); use --algorithm raytrace for it");

@@ -416,6 +416,14 @@ TEST(Rasterizer, RefusesWhatItCannotDraw) {
     EXPECT_TRUE(test::contains(shapeMessage, "'ball'")) << shapeMessage;
     EXPECT_TRUE(test::contains(shapeMessage, "triangle meshes only")) << shapeMessage;
 
+    // Cut-outs (material opacity) need the accelerators' filters.
+    const TestScene leaf = sceneFromText(R"({
+      "materials": [ { "name": "leaf", "opacity": 0.5 } ],
+      "shapes": [ { "type": "mesh", "name": "leaf", "material": "leaf",
+                    "positions": [[0,0,0],[1,0,0],[0,1,0]], "indices": [0,1,2] } ] })");
+    const std::string cutMessage = test::errorMessage([&] { requireRasterizable(leaf.world); });
+    EXPECT_TRUE(test::contains(cutMessage, "'leaf' has a material with an opacity")) << cutMessage;
+
     // Integrators that trace more than the first hit, and more than one sample.
     const std::string direct = test::errorMessage([] { requireRasterSettings("direct", 1); });
     EXPECT_TRUE(test::contains(direct, "'direct'")) << direct;
