@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "lobe_sampling.h"
 #include "strahl/bsdf/bsdf_models.h"
 #include "strahl/bsdf/fresnel.h"
 #include "strahl/bsdf/local_frame.h"
@@ -72,12 +73,7 @@ std::optional<BsdfSample> DielectricModel::sample(const Vec3& wo, float uLobe,
     if (smooth()) {
         const float r = fresnelDielectric(wo.z, eta), t = 1.0f - r;
         s.specular = true;
-        if (uLobe < r) {
-            s.wi = reflectZ(wo);
-            s.f = tint * (r / std::abs(s.wi.z));
-            s.pdf = r;
-            return s;
-        }
+        if (uLobe < r) return deltaReflection(wo, tint, r);
         float etap;
         if (t <= 0.0f || !refractDir(wo, Vec3(0.0f, 0.0f, 1.0f), eta, s.wi, etap) ||
             s.wi.z == 0.0f) {

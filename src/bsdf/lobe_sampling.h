@@ -1,7 +1,8 @@
 #pragma once
 // Internal to the bsdf module: the sampling steps the opaque two-lobe models
-// (Phong, plastic, metallic-roughness) and the conductor share. All work in
-// the local frame with wo in the upper hemisphere (see bsdf_models.h).
+// (Phong, plastic, metallic-roughness) and the conductor share, and the delta
+// reflection of the dielectrics. All work in the local frame; the opaque
+// models' with wo in the upper hemisphere (see bsdf_models.h).
 
 #include <optional>
 
@@ -14,6 +15,17 @@ namespace strahl::bsdf_models {
 
 inline float mean(const Color& c) {
     return (c.r + c.g + c.b) / 3.0f;
+}
+
+// The delta mirror reflection about +z chosen with probability `probability`
+// (its pdf), carrying `weight` (f |cos| / pdf): f = weight probability / |cos|.
+inline BsdfSample deltaReflection(const Vec3& wo, const Color& weight, float probability) {
+    BsdfSample s;
+    s.wi = reflectZ(wo);
+    s.f = weight * (probability / std::abs(s.wi.z));
+    s.pdf = probability;
+    s.specular = true;
+    return s;
 }
 
 // The sample of a non-delta lobe once its direction wi is drawn: nullopt when

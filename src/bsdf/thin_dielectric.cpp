@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "lobe_sampling.h"
 #include "strahl/bsdf/bsdf_models.h"
 #include "strahl/bsdf/fresnel.h"
 #include "strahl/bsdf/local_frame.h"
@@ -20,14 +21,9 @@ std::optional<BsdfSample> ThinDielectricModel::sample(const Vec3& wo, float uLob
                                                       const Vec2&) const {
     if (wo.z == 0.0f) return std::nullopt;
     const float r = reflectance(wo.z);
+    if (uLobe < r) return deltaReflection(wo, tint, r);
     BsdfSample s;
     s.specular = true;
-    if (uLobe < r) {
-        s.wi = reflectZ(wo);
-        s.f = tint * (r / std::abs(s.wi.z));
-        s.pdf = r;
-        return s;
-    }
     s.wi = -wo;
     s.f = tint * ((1.0f - r) / std::abs(s.wi.z));
     s.pdf = 1.0f - r;
