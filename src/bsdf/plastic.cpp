@@ -18,9 +18,7 @@ float PlasticModel::coatTransmittance(float cosTheta) const {
 float PlasticModel::specularProbability(float coatTransmittanceO) const {
     // Lobe weights: what the coat reflects, about 1 - T(wo), against the
     // diffuse albedo T(wo) kd (1 - Fbar_int) / (1 - kd Fbar_int) (see diffuseF).
-    const Color multiple = Color(1.0f) - (nonlinear ? kd * internalReflectance
-                                                    : Color(internalReflectance));
-    const Color diffuseAlbedo = kd * (1.0f - internalReflectance) / multiple;
+    const Color diffuseAlbedo = kd * (1.0f - internalReflectance) / interreflection();
     const float r = 1.0f - coatTransmittanceO;
     const float d = coatTransmittanceO * mean(diffuseAlbedo);
     return r + d > 0.0f ? r / (r + d) : 1.0f;
@@ -33,9 +31,7 @@ Color PlasticModel::diffuseF(const Vec3& wo, const Vec3& wi) const {
     // geometric series of base-coat inter-reflections (Mitsuba's "linear"
     // variant leaves kd out of the series: 1 - Fbar_int).
     const float tIn = coatTransmittance(wi.z), tOut = coatTransmittance(wo.z);
-    const Color series = Color(1.0f) - (nonlinear ? kd * internalReflectance
-                                                  : Color(internalReflectance));
-    return tIn * tOut * kd / (kPi * eta * eta * series);
+    return tIn * tOut * kd / (kPi * eta * eta * interreflection());
 }
 
 Color PlasticModel::f(const Vec3& wo, const Vec3& wi) const {

@@ -52,7 +52,7 @@ ShadingContext makeShadingContext(const World& world, const SurfaceHit& hit, flo
     if (ctx.material->terminatorShadowing && ctx.material->mapsNormals()) {
         // The tilt the map gives the normal acts as a microfacet roughness:
         // alpha^2 = tan^2(tilt) / 8, at most 1 (Chiang et al. 2019).
-        Vec3 unmapped = glm::normalize(si.Ns);
+        Vec3 unmapped = si.Ns;  // unit
         if (glm::dot(unmapped, ng) < 0.0f) unmapped = -unmapped;
         const float c = std::clamp(glm::dot(unmapped, n), -1.0f, 1.0f);
         const float tan2 = (1.0f - c * c) / std::max(c * c, 1e-12f);

@@ -448,6 +448,14 @@ private:
         }
     }
 
+    // The parameters only the rough variants read are unknown to the smooth ones.
+    static void refuseMicrofacetParameters(const Object& b) {
+        for (const char* name : {"distribution", "alpha", "alpha_u", "alpha_v", "sample_visible"})
+            if (const Property* p = b.property(name))
+                fail(p->place.text(), ": ", b.element(), ": the parameter '", name,
+                     "' is not supported (docs/mitsuba.md lists what is)");
+    }
+
     // An index of refraction: a number or one of Mitsuba's named materials.
     double ior(const Object& b, const std::string& name, const std::string& fallback) {
         const Property* p = b.property(name);
@@ -484,7 +492,7 @@ private:
         allowOnly(b, {"material", "eta", "k", "specular_reflectance", "distribution", "alpha",
                       "alpha_u", "alpha_v"},
                   {"sample_visible"});
-        if (!rough) allowOnly(b, {"material", "eta", "k", "specular_reflectance"});
+        if (!rough) refuseMicrofacetParameters(b);
         requireUntinted(b, {"specular_reflectance"});
         json m = {{"type", "conductor"}};
         if (b.property("material") && (b.property("eta") || b.property("k")))
@@ -509,8 +517,7 @@ private:
         allowOnly(b, {"int_ior", "ext_ior", "specular_reflectance", "specular_transmittance",
                       "distribution", "alpha", "alpha_u", "alpha_v"},
                   {"sample_visible"});
-        if (!rough)
-            allowOnly(b, {"int_ior", "ext_ior", "specular_reflectance", "specular_transmittance"});
+        if (!rough) refuseMicrofacetParameters(b);
         requireUntinted(b, {"specular_reflectance", "specular_transmittance"});
         json m = {{"type", "dielectric"}, {"ior", relativeIor(b, "bk7")}};
         if (rough) microfacets(b, m, false);
@@ -523,9 +530,7 @@ private:
         allowOnly(b, {"diffuse_reflectance", "int_ior", "ext_ior", "nonlinear",
                       "specular_reflectance", "distribution", "alpha"},
                   {"sample_visible"});
-        if (!rough)
-            allowOnly(b, {"diffuse_reflectance", "int_ior", "ext_ior", "nonlinear",
-                          "specular_reflectance"});
+        if (!rough) refuseMicrofacetParameters(b);
         requireUntinted(b, {"specular_reflectance"});
         json m = {{"type", "plastic"},
                   {"color", color(b, "diffuse_reflectance", 0.5)},

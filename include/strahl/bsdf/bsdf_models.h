@@ -114,6 +114,11 @@ struct PlasticModel {
     // The fraction of light at cos(theta) from outside that passes the coat.
     float coatTransmittance(float cosTheta) const;
     float specularProbability(float coatTransmittanceO) const;
+    // 1 - kd Fbar_int (or 1 - Fbar_int, linear): what the base-coat
+    // inter-reflection series divides by.
+    Color interreflection() const {
+        return Color(1.0f) - (nonlinear ? kd * internalReflectance : Color(internalReflectance));
+    }
     Color diffuseF(const Vec3& wo, const Vec3& wi) const;
     Color f(const Vec3& wo, const Vec3& wi) const;
     float pdf(const Vec3& wo, const Vec3& wi) const;

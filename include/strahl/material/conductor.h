@@ -31,6 +31,7 @@ struct ConductorMaterial {
     Color k = findMetalPreset("aluminium")->k;
     TexturedFloat roughnessU{0.0f, {}, 1};
     TexturedFloat roughnessV{0.0f, {}, 1};
+    bool anisotropic = false;  // roughness_u and roughness_v given (else V is U)
     MicrofacetModel microfacets;
 
     template <typename Reader>
@@ -60,13 +61,17 @@ struct ConductorMaterial {
             r.fail("'roughness_u' and 'roughness_v' go together");
         material_parsing::roughness(r, m.roughnessU);
         m.roughnessV = m.roughnessU;
+        m.anisotropic = r.has("roughness_u");
         r.texturedFloat("roughness_u", 0.0f, 1.0f, m.roughnessU);
         r.texturedFloat("roughness_v", 0.0f, 1.0f, m.roughnessV);
         material_parsing::microfacetModel(r, m.microfacets);
         return m;
     }
     Bsdf bsdf(const MaterialPoint& p) const {
-        return Bsdf::conductor(eta, k, p.alpha(roughnessU), p.alpha(roughnessV), microfacets);
+        // An isotropic roughness is looked up once.
+        const float alphaU = p.alpha(roughnessU);
+        return Bsdf::conductor(eta, k, alphaU, anisotropic ? p.alpha(roughnessV) : alphaU,
+                               microfacets);
     }
     template <typename Fn>
     void forEachTexture(Fn&& fn) {
