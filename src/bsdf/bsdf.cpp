@@ -1,8 +1,10 @@
 // Bsdf: parameter validation in the factories, the mirror-image rule of the
-// opaque BSDFs, and the dispatch (std::visit) to the models of bsdf_models.h.
+// opaque BSDFs, the dispatch (std::visit) to the models of bsdf_models.h, and
+// the weighted sums of blend().
 
 #include "strahl/bsdf/bsdf.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "strahl/bsdf/bsdf_models.h"
@@ -128,6 +130,24 @@ Bsdf Bsdf::metallicRoughness(const Color& base, float metallic, float alpha, flo
                 b);
 }
 
+Bsdf::Sum Bsdf::terms() const {
+    return sum_ ? *sum_ : Sum{{model_, 1.0f}};
+}
+
+Bsdf Bsdf::blend(const Bsdf& a, const Bsdf& b, float weight) {
+    if (std::isnan(weight)) fail("blend: the weight must be a number, got NaN");
+    weight = std::clamp(weight, 0.0f, 1.0f);
+    if (weight == 0.0f) return a;
+    if (weight == 1.0f) return b;
+    auto sum = std::make_shared<Sum>();
+    for (const WeightedModel& term : a.terms()) sum->push_back({term.model, (1.0f - weight) * term.weight});
+    for (const WeightedModel& term : b.terms()) sum->push_back({term.model, weight * term.weight});
+    Bsdf blended;
+    blended.sum_ = std::move(sum);
+    blended.albedo_ = (1.0f - weight) * a.albedo_ + weight * b.albedo_;
+    return blended;
+}
+
 // ---- Evaluation ----------------------------------------------------------------
 
 namespace {
@@ -150,17 +170,26 @@ Result evaluate(const BsdfModel& bsdf, Vec3 wo, Vec3 wi, Result none, Fn&& fn) {
 }  // namespace
 
 Color Bsdf::f(const Vec3& wo, const Vec3& wi) const {
-    return evaluate(model_, wo, wi, Color(0.0f),
-                    [](const auto& model, const Vec3& o, const Vec3& i) { return model.f(o, i); });
+    const auto fn = [](const auto& model, const Vec3& o, const Vec3& i) { return model.f(o, i); };
+    if (!sum_) return evaluate(model_, wo, wi, Color(0.0f), fn);
+    Color total(0.0f);
+    for (const WeightedModel& term : *sum_)
+        total += term.weight * evaluate(term.model, wo, wi, Color(0.0f), fn);
+    return total;
 }
 
 float Bsdf::pdf(const Vec3& wo, const Vec3& wi) const {
-    return evaluate(model_, wo, wi, 0.0f,
-                    [](const auto& model, const Vec3& o, const Vec3& i) { return model.pdf(o, i); });
+    const auto fn = [](const auto& model, const Vec3& o, const Vec3& i) { return model.pdf(o, i); };
+    if (!sum_) return evaluate(model_, wo, wi, 0.0f, fn);
+    float total = 0.0f;
+    for (const WeightedModel& term : *sum_) total += term.weight * evaluate(term.model, wo, wi, 0.0f, fn);
+    return total;
 }
 
-std::optional<BsdfSample> Bsdf::sample(const Vec3& wo, float uLobe, const Vec2& u) const {
-    if (wo.z == 0.0f) return std::nullopt;
+namespace {
+
+std::optional<BsdfSample> sampleModel(const BsdfModel& bsdf, const Vec3& wo, float uLobe,
+                                      const Vec2& u) {
     return std::visit(
         [&](const auto& model) -> std::optional<BsdfSample> {
             if constexpr (!std::decay_t<decltype(model)>::kOpaque) {
@@ -173,16 +202,57 @@ std::optional<BsdfSample> Bsdf::sample(const Vec3& wo, float uLobe, const Vec2& 
                 return s;
             }
         },
-        model_);
+        bsdf);
+}
+
+}  // namespace
+
+std::optional<BsdfSample> Bsdf::sample(const Vec3& wo, float uLobe, const Vec2& u) const {
+    if (wo.z == 0.0f) return std::nullopt;
+    if (!sum_) return sampleModel(model_, wo, uLobe, u);
+    // Pick term i with probability weight_i and reuse uLobe's position within
+    // its interval (rescaled to [0, 1)) for the model's own lobe choice.
+    const Sum& terms = *sum_;
+    size_t picked = terms.size() - 1;
+    float below = 0.0f;
+    for (size_t i = 0; i + 1 < terms.size(); ++i) {
+        if (uLobe < below + terms[i].weight) {
+            picked = i;
+            break;
+        }
+        below += terms[i].weight;
+    }
+    const float w = terms[picked].weight;
+    const float uModel = std::clamp((uLobe - below) / w, 0.0f, 0x1.fffffep-1f);
+    std::optional<BsdfSample> s = sampleModel(terms[picked].model, wo, uModel, u);
+    if (!s) return s;
+    if (s->specular) {
+        // A delta lobe belongs to the picked model alone.
+        s->pdf *= w;
+        s->f *= w;
+        return s;
+    }
+    // A direction every model could have produced: the mixture's f and density.
+    s->f = f(wo, s->wi);
+    s->pdf = pdf(wo, s->wi);
+    if (!(s->pdf > 0.0f)) return std::nullopt;
+    return s;
 }
 
 bool Bsdf::isSpecular() const {
-    return std::visit([](const auto& model) { return model.specular(); }, model_);
+    const auto specular = [](const BsdfModel& m) {
+        return std::visit([](const auto& model) { return model.specular(); }, m);
+    };
+    if (!sum_) return specular(model_);
+    return std::all_of(sum_->begin(), sum_->end(), [&](const WeightedModel& t) { return specular(t.model); });
 }
 
 bool Bsdf::isOpaque() const {
-    return std::visit([](const auto& model) { return std::decay_t<decltype(model)>::kOpaque; },
-                      model_);
+    const auto opaque = [](const BsdfModel& m) {
+        return std::visit([](const auto& model) { return std::decay_t<decltype(model)>::kOpaque; }, m);
+    };
+    if (!sum_) return opaque(model_);
+    return std::all_of(sum_->begin(), sum_->end(), [&](const WeightedModel& t) { return opaque(t.model); });
 }
 
 Color Bsdf::albedo() const {

@@ -14,9 +14,11 @@ Bounds3 TriangleMesh::bounds() const {
 }
 
 size_t TriangleMesh::memoryBytes() const {
+    size_t attributeBytes = 0;
+    for (const MeshAttribute& a : attributes) attributeBytes += a.values.capacity() * sizeof(float);
     return positions.capacity() * sizeof(Vec3) + normals.capacity() * sizeof(Vec3) +
            uvs.capacity() * sizeof(Vec2) + indices.capacity() * sizeof(uint32_t) +
-           faceMaterials.capacity() * sizeof(uint32_t);
+           faceMaterials.capacity() * sizeof(uint32_t) + attributeBytes;
 }
 
 void TriangleMesh::transform(const Mat4& m) {
@@ -46,6 +48,13 @@ void TriangleMesh::validate(const std::string& source) const {
     if (!faceMaterials.empty() && faceMaterials.size() != triangleCount())
         fail(source, ": ", faceMaterials.size(), " face materials for ", triangleCount(),
              " triangles");
+    for (const MeshAttribute& a : attributes) {
+        const bool perFace = a.scope == MeshAttribute::Scope::Face;
+        const size_t items = perFace ? triangleCount() : positions.size();
+        if (a.channels < 1 || a.channels > 4 || a.values.size() != items * size_t(a.channels))
+            fail(source, ": attribute '", a.name, "' has ", a.values.size(), " values for ", items,
+                 perFace ? " triangles" : " vertices", " of ", a.channels, " channels");
+    }
     for (size_t i = 0; i < positions.size(); ++i) {
         if (!isFinite(positions[i]))
             fail(source, ": vertex ", i, " has a non-finite coordinate (", positions[i].x, ", ",
@@ -138,6 +147,7 @@ SurfaceInteraction triangleInteraction(const TriangleMesh& mesh, uint32_t prim, 
         si.uv = Vec2(u, v);
     }
     si.materialSlot = mesh.faceMaterials.empty() ? 0u : mesh.faceMaterials[prim];
+    if (!mesh.attributes.empty()) si.attributes = {&mesh, prim, Vec2(u, v)};
     return si;
 }
 

@@ -19,12 +19,7 @@ CameraSample shadeCameraSample(const World& world, const Integrator& integrator,
             sample.aov.normal = surface.shadingNormal();
             sample.aov.depth = hit.t * glm::length(ray.dir);
             const SurfaceInteraction& si = surface.interaction();
-            ShadingPoint sp;
-            sp.p = si.p;
-            sp.n = si.Ns;
-            sp.dpdu = si.dpdu;
-            sp.dpdv = si.dpdv;
-            sp.uv = si.uv;
+            const ShadingPoint sp = shadingPointAt(si);
             sample.aov.albedo = makeBsdf(surface.material(), sp, world.textures.get()).albedo();
             sample.aov.position = si.p;
             sample.aov.objectId = objectId(hit);

@@ -26,12 +26,7 @@ ShadingContext makeShadingContext(const World& world, const SurfaceHit& hit, flo
     ctx.wo = -glm::normalize(hit.ray().dir);
 
     ShadingPoint& sp = ctx.point;
-    sp.p = si.p;
-    sp.n = si.Ns;
-    sp.dpdu = si.dpdu;
-    sp.dpdv = si.dpdv;
-    sp.uv = si.uv;
-    sp.footprint = footprint * si.uvDensity;
+    sp = shadingPointAt(si, footprint);
     const TextureSystem* textures = world.textures.get();
     const Vec3 ns = shadingNormal(*ctx.material, sp, textures);
     ctx.bsdf = makeBsdf(*ctx.material, sp, textures);

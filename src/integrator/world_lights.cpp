@@ -29,11 +29,13 @@ constexpr size_t kMaxAreaLights = size_t(1) << 24;
 // Whether next-event estimation samples the material's emission on `shape`:
 // uniform, or read through the mesh's uvs (a texture or a checkerboard). A
 // tessellated parametric surface's hits take their uv from the exact surface,
-// not the mesh, so its patterned emission is left to BSDF sampling.
+// not the mesh, so its patterned emission is left to BSDF sampling; so is an
+// emission read from a mesh attribute.
 bool lightSampled(const Material& m, const SceneShape& shape) {
     if (!m.emits()) return false;
     if (m.hasUniformEmission()) return true;
-    return m.mapping.kind == TextureMapping::Kind::UV && !shape.tessellated;
+    return m.mapping.kind == TextureMapping::Kind::UV && !shape.tessellated &&
+           m.emission.texture.meshAttribute.empty();
 }
 
 // The mean of a textured emission's pattern over its image (for the light's

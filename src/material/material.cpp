@@ -39,15 +39,31 @@ Color Checkerboard::at(Vec2 uv) const {
     return upperS == upperT ? color0 : color1;
 }
 
+ShadingPoint shadingPointAt(const SurfaceInteraction& si, float footprint) {
+    ShadingPoint sp;
+    sp.p = si.p;
+    sp.n = si.Ns;
+    sp.dpdu = si.dpdu;
+    sp.dpdv = si.dpdv;
+    sp.uv = si.uv;
+    sp.footprint = footprint * si.uvDensity;
+    if (si.attributes.mesh) sp.attributes = &si.attributes;
+    return sp;
+}
+
 Color evaluateColor(const TexturedColor& c, const TextureMapping& mapping, const ShadingPoint& sp,
                     const TextureSystem* textures) {
     if (c.checkerboard) return c.value * c.checkerboard->at(sp.uv);
+    if (!c.texture.meshAttribute.empty())
+        return sp.attributes ? c.value * Color(sp.attributes->value(c.texture.meshAttribute)) : Color(0.0f);
     if (!c.texture.valid() || !textures) return c.value;
     return c.value * Color(lookup(c.texture, mapping, sp, *textures));
 }
 
 float evaluateFloat(const TexturedFloat& f, const TextureMapping& mapping, const ShadingPoint& sp,
                     const TextureSystem* textures) {
+    if (!f.texture.meshAttribute.empty())
+        return sp.attributes ? f.value * sp.attributes->value(f.texture.meshAttribute)[f.channel] : 0.0f;
     if (!f.texture.valid() || !textures) return f.value;
     return f.value * lookup(f.texture, mapping, sp, *textures)[f.channel];
 }

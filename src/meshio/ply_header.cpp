@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <cmath>
 #include <optional>
 #include <utility>
 
@@ -29,7 +30,107 @@ std::optional<Scalar> scalarNamed(std::string_view name) {
     return std::nullopt;
 }
 
+// Mitsuba's grouping of an element's other scalar properties into attributes:
+// r g b [a] (or red green blue [alpha]) are "<scope>_color"; then runs of
+// consecutive properties <prefix>_<c> whose one-letter suffixes go x y z w,
+// r g b a, 0 1 2 3 or 1 2 3 4 are "<scope>_<prefix>" (+ "_color" for r g b a),
+// kept with 1 or 3 channels. Anything else (no suffix, a broken run, a prefix
+// seen before) is not an attribute and is skipped, with a warning for the runs.
+std::vector<AttributeColumns> groupAttributes(const std::string& file, const Element& e,
+                                              const std::string& scope,
+                                              const std::vector<const Property*>& reserved) {
+    std::vector<AttributeColumns> groups;
+    std::vector<bool> used(e.properties.size(), false);
+    for (const Property* p : reserved) used[size_t(p - e.properties.data())] = true;
+    const auto index = [&](std::string_view name) -> std::optional<size_t> {
+        const Property* p = e.find(name);
+        if (!p || p->isList || used[size_t(p - e.properties.data())]) return std::nullopt;
+        return size_t(p - e.properties.data());
+    };
+    for (const auto& names : {std::array<std::string_view, 4>{"r", "g", "b", "a"},
+                              std::array<std::string_view, 4>{"red", "green", "blue", "alpha"}}) {
+        const auto r = index(names[0]), g = index(names[1]), b = index(names[2]);
+        if (!r || !g || !b) continue;
+        AttributeColumns color{scope + "_color", {*r, *g, *b}};
+        if (const auto a = index(names[3])) color.properties.push_back(*a);
+        for (size_t k : color.properties) used[k] = true;
+        groups.push_back(std::move(color));
+        break;
+    }
+    for (std::string_view name : {"r", "g", "b", "a"})
+        if (const auto k = index(name)) used[*k] = true;
+
+    static constexpr std::string_view kSuffixes[] = {"xyzw", "rgba", "0123", "1234"};
+    std::vector<std::string> seen;
+    AttributeColumns run;
+    int category = -1;
+    bool broken = false;
+    const auto flush = [&] {
+        if (category < 0) return;
+        const size_t n = run.properties.size();
+        if (broken || (n != 1 && n != 3)) {
+            warn(concat(file, ": element ", e.name, ": properties ", run.name,
+                        "_* are not an attribute (", broken ? "their suffixes break the sequence" : concat(n, " channels, not 1 or 3"),
+                        "): skipped"));
+        } else {
+            groups.push_back({concat(scope, '_', run.name, category == 1 ? "_color" : ""), run.properties});
+        }
+        category = -1;
+        broken = false;
+        run = {};
+    };
+    for (size_t k = 0; k < e.properties.size(); ++k) {
+        const Property& p = e.properties[k];
+        if (used[k] || p.isList) continue;
+        const size_t underscore = p.name.rfind('_');
+        if (underscore == std::string::npos || underscore + 2 != p.name.size()) {
+            flush();
+            continue;
+        }
+        const std::string prefix = p.name.substr(0, underscore);
+        const char suffix = p.name.back();
+        if (category >= 0 && prefix == run.name) {
+            const size_t level = run.properties.size();
+            if (level < 4 && kSuffixes[category][level] == suffix)
+                run.properties.push_back(k);
+            else
+                broken = true;
+            continue;
+        }
+        flush();
+        if (std::find(seen.begin(), seen.end(), prefix) != seen.end()) continue;
+        for (int c = 0; c < 4; ++c)
+            if (kSuffixes[c][0] == suffix) category = c;
+        if (category < 0) continue;
+        seen.push_back(prefix);
+        run = {prefix, {k}};
+    }
+    flush();
+    return groups;
+}
+
+// The sRGB transfer function's inverse (IEC 61966-2-1).
+float srgbToLinear(double v) {
+    return static_cast<float>(v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
+}
+
 }  // namespace
+
+float attributeValue(double raw, Scalar type) {
+    if (!isInteger(type)) return static_cast<float>(raw);
+    const bool isSigned = type == Scalar::Int8 || type == Scalar::Int16 || type == Scalar::Int32;
+    const double largest = std::ldexp(1.0, int(8 * sizeOf(type)) - (isSigned ? 1 : 0)) - 1.0;
+    return srgbToLinear(std::clamp(raw / largest, 0.0, 1.0));
+}
+
+std::vector<MeshAttribute> makeAttributes(const Layout& layout) {
+    std::vector<MeshAttribute> out;
+    for (const AttributeColumns& a : layout.vertexAttributes)
+        out.push_back({a.name, MeshAttribute::Scope::Vertex, int(a.properties.size()), {}});
+    for (const AttributeColumns& a : layout.faceAttributes)
+        out.push_back({a.name, MeshAttribute::Scope::Face, int(a.properties.size()), {}});
+    return out;
+}
 
 const Property* Element::find(std::string_view propertyName) const {
     for (const Property& p : properties) {
@@ -184,10 +285,18 @@ Layout makeLayout(const std::string& file, const Header& h) {
             break;
         }
     }
-    for (const Property& p : v.properties) {
-        const auto it = std::find(byRole.begin(), byRole.end(), &p);
-        layout.vertexRoles.push_back(it == byRole.end() ? kSkip : int(it - byRole.begin()));
+    std::vector<const Property*> reserved;
+    for (const Property* p : byRole)
+        if (p) reserved.push_back(p);
+    layout.vertexAttributes = groupAttributes(file, v, "vertex", reserved);
+    layout.vertexRoles.assign(v.properties.size(), kSkip);
+    for (size_t k = 0; k < v.properties.size(); ++k) {
+        const auto it = std::find(byRole.begin(), byRole.end(), &v.properties[k]);
+        if (it != byRole.end()) layout.vertexRoles[k] = int(it - byRole.begin());
     }
+    int channel = kRoleCount;
+    for (const AttributeColumns& a : layout.vertexAttributes)
+        for (size_t k : a.properties) layout.vertexRoles[k] = channel++;
 
     if (layout.face) {
         const Element& f = *layout.face;
@@ -198,6 +307,11 @@ Layout makeLayout(const std::string& file, const Header& h) {
         const Property& p = *layout.faceIndices;
         if (!p.isList || !isInteger(p.type))
             error(p.headerLine, "face property '", p.name, "' is not a list of integers");
+        layout.faceAttributes = groupAttributes(file, f, "face", {&p});
+        layout.faceChannels.assign(f.properties.size(), -1);
+        int faceChannel = 0;
+        for (const AttributeColumns& a : layout.faceAttributes)
+            for (size_t k : a.properties) layout.faceChannels[k] = faceChannel++;
     }
     return layout;
 }

@@ -10,6 +10,8 @@
 #include <string_view>
 #include <vector>
 
+#include "strahl/geometry/mesh_attribute.h"
+
 namespace strahl::meshio::ply {
 
 enum class Scalar : uint8_t { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
@@ -73,14 +75,44 @@ Header parseHeader(const std::string& file, std::string_view data);
 // What each vertex property is used for.
 enum Role : int { kSkip = -1, kX, kY, kZ, kNX, kNY, kNZ, kU, kV, kRoleCount };
 
+// A mesh attribute made of scalar properties of one element, one per channel
+// (Mitsuba's naming rules: docs/mesh-files.md, "Attributes").
+struct AttributeColumns {
+    std::string name;              // "vertex_color", "face_weight", ...
+    std::vector<size_t> properties;  // indices in the element, in channel order
+};
+
 struct Layout {
     const Element* vertex = nullptr;
     const Element* face = nullptr;
     const Property* faceIndices = nullptr;
-    std::vector<int> vertexRoles;  // one Role per vertex property
+    // One Role per vertex property; kRoleCount + c for the c-th channel of
+    // the vertex attributes, counted in order over vertexAttributes.
+    std::vector<int> vertexRoles;
     bool hasNormals = false;
     bool hasUvs = false;
+    std::vector<AttributeColumns> vertexAttributes, faceAttributes;
+    // One per face property: the channel it fills (counted as for the
+    // vertices over faceAttributes), or -1.
+    std::vector<int> faceChannels;
+
+    size_t vertexChannels() const { return channelCount(vertexAttributes); }
+    size_t faceChannelCount() const { return channelCount(faceAttributes); }
+    static size_t channelCount(const std::vector<AttributeColumns>& attributes) {
+        size_t n = 0;
+        for (const AttributeColumns& a : attributes) n += a.properties.size();
+        return n;
+    }
 };
+
+// An attribute value as Mitsuba reads it: an integer normalised by its type's
+// largest value and sRGB-decoded (Mitsuba marks integer PLY properties as
+// gamma-encoded), a float as it is.
+float attributeValue(double raw, Scalar type);
+
+// The mesh's attributes for the layout's columns, vertex ones first, with no
+// values yet (the body readers fill them).
+std::vector<MeshAttribute> makeAttributes(const Layout& layout);
 
 // Throws "file: header line N: what" when there is no usable vertex element
 // (x, y, z; at most 2^32-1 vertices) or the face element has no integer index list.

@@ -98,6 +98,7 @@ LoadedMesh decodePly(std::string_view data, const fs::path& file, bool parallel)
     const Layout layout = makeLayout(name, header);
 
     LoadedMesh result;
+    result.mesh.attributes = makeAttributes(layout);
     if (header.encoding == Encoding::Ascii)
         readAsciiBody(name, data, header, layout, result.mesh);
     else

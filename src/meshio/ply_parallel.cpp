@@ -12,7 +12,8 @@
 // kFacesPerBlock faces starts and how many triangles come before it; the blocks
 // are then decoded in parallel. A face element with a second list property, or
 // anything odd the pass meets (a face shorter than 3 corners, a negative list
-// length, the end of the data), goes back to the generic reader, which names
+// length, the end of the data), and faces with attributes (rare) go back to
+// the generic reader, which names
 // the first problem in file order.
 //
 // Errors found by parallel chunks (a non-finite coordinate, an index out of
@@ -116,20 +117,25 @@ void decodeVerticesAs(const BinaryBody& body, size_t offset, const Layout& layou
     resizeForDecoding(mesh.positions, count, 1);  // the spare element Embree's 16-byte loads need
     if (layout.hasNormals) resizeForDecoding(mesh.normals, count);
     if (layout.hasUvs) resizeForDecoding(mesh.uvs, count);
+    for (size_t a = 0; a < layout.vertexAttributes.size(); ++a)
+        resizeForDecoding(mesh.attributes[a].values, count * size_t(mesh.attributes[a].channels));
 
     const char* const records = body.data.data() + offset;
     FirstError firstError;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, count, kVertexGrain), [&](const auto& range) {
-        float values[kRoleCount] = {};
+        std::vector<float> values(kRoleCount + layout.vertexChannels(), 0.0f);
         for (size_t i = range.begin(); i != range.end(); ++i) {
             const char* record = records + i * stride;
             for (const VertexField& f : fields) {
                 // Through double, as the generic reader converts: same bits.
+                // (attributeValue leaves a float as it is.)
                 float v;
                 if constexpr (kAllFloat)
                     v = loadAs<kSwap, float, uint32_t>(record + f.offset);
-                else
+                else if (f.role < kRoleCount)
                     v = static_cast<float>(loadReal<kSwap>(record + f.offset, f.type));
+                else
+                    v = attributeValue(loadReal<kSwap>(record + f.offset, f.type), f.type);
                 if (!std::isfinite(v)) {
                     firstError.offer(i, f.property, offset + i * stride + f.offset,
                                      concat("vertex ", i, " has a non-finite ", *f.name));
@@ -140,6 +146,11 @@ void decodeVerticesAs(const BinaryBody& body, size_t offset, const Layout& layou
             mesh.positions[i] = Vec3(values[kX], values[kY], values[kZ]);
             if (layout.hasNormals) mesh.normals[i] = Vec3(values[kNX], values[kNY], values[kNZ]);
             if (layout.hasUvs) mesh.uvs[i] = Vec2(values[kU], values[kV]);
+            size_t channel = kRoleCount;
+            for (size_t a = 0; a < layout.vertexAttributes.size(); ++a) {
+                const auto n = size_t(mesh.attributes[a].channels);
+                for (size_t c = 0; c < n; ++c) mesh.attributes[a].values[i * n + c] = values[channel++];
+            }
         }
     });
     firstError.throwIfAny(body.file);
@@ -299,7 +310,7 @@ std::optional<size_t> decodeFacesAs(const BinaryBody& body, size_t offset, const
                                     TriangleMesh& mesh) {
     const Element& e = *layout.face;
     const FaceRecord shape = faceRecord(layout);
-    if (shape.otherLists) return std::nullopt;
+    if (shape.otherLists || !layout.faceAttributes.empty()) return std::nullopt;
     if (e.count == 0) return offset;
 
     // Try the record size of the first face for all of them.

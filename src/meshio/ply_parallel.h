@@ -31,7 +31,7 @@ void decodeVertices(const BinaryBody& body, size_t offset, const Layout& layout,
 
 // The face element from `offset`: fan-triangulated into mesh.indices. Returns
 // the offset after it, or nullopt (mesh untouched) when the element has a list
-// besides the index list, is cut short, or holds a face shorter than 3 corners
+// besides the index list or attributes, is cut short, or holds a face shorter than 3 corners
 // or a negative list length: the generic reader then reports the first problem.
 // Throws "file: byte offset N: face i refers to vertex j but there are only n
 // vertices" for the first bad index in file order.

@@ -1,9 +1,10 @@
 // The generic PLY body reader: one value at a time through a per-encoding
-// source, keeping vertex positions/normals/uvs and face index lists and skipping
-// everything else. It reads ascii bodies, and binary elements the parallel
-// decoder (ply_parallel.cpp) does not take: lists in vertices, faces with more
-// than one list, and every element whose data is cut short, where it finds the
-// first bad value in file order and names its place.
+// source, keeping vertex positions/normals/uvs, face index lists and the
+// layout's attributes and skipping everything else. It reads ascii bodies, and
+// binary elements the parallel decoder (ply_parallel.cpp) does not take: lists
+// in vertices, faces with more than one list or with attributes, and every
+// element whose data is cut short, where it finds the first bad value in file
+// order and names its place.
 
 #include "ply_sequential.h"
 
@@ -196,7 +197,7 @@ void readVertices(Source& src, const Layout& layout, bool binary, TriangleMesh& 
     mesh.positions.reserve(expected + 1);  // the spare element Embree's 16-byte loads need
     if (layout.hasNormals) mesh.normals.reserve(expected);
     if (layout.hasUvs) mesh.uvs.reserve(expected);
-    std::array<float, kRoleCount> values{};
+    std::vector<float> values(kRoleCount + layout.vertexChannels(), 0.0f);
     for (uint64_t i = 0; i < e.count; ++i) {
         for (size_t k = 0; k < e.properties.size(); ++k) {
             const Property& p = e.properties[k];
@@ -206,14 +207,19 @@ void readVertices(Source& src, const Layout& layout, bool binary, TriangleMesh& 
             } else if (role == kSkip) {
                 src.skip(p.type);
             } else {
-                values[size_t(role)] = static_cast<float>(src.real(p.type));
-                if (!std::isfinite(values[size_t(role)]))
-                    src.error("vertex ", i, " has a non-finite ", p.name);
+                const double raw = src.real(p.type);
+                float& value = values[size_t(role)];
+                value = role < kRoleCount ? static_cast<float>(raw) : attributeValue(raw, p.type);
+                if (!std::isfinite(value)) src.error("vertex ", i, " has a non-finite ", p.name);
             }
         }
         mesh.positions.emplace_back(values[kX], values[kY], values[kZ]);
         if (layout.hasNormals) mesh.normals.emplace_back(values[kNX], values[kNY], values[kNZ]);
         if (layout.hasUvs) mesh.uvs.emplace_back(values[kU], values[kV]);
+        size_t channel = kRoleCount;
+        for (size_t a = 0; a < layout.vertexAttributes.size(); ++a)
+            for (size_t c = 0; c < layout.vertexAttributes[a].properties.size(); ++c)
+                mesh.attributes[a].values.push_back(values[channel++]);
     }
 }
 
@@ -223,8 +229,18 @@ void readFaces(Source& src, const Layout& layout, bool binary, TriangleMesh& mes
     const uint64_t vertexCount = layout.vertex->count;
     mesh.indices.reserve(3 * plausibleCount(src, e, binary));
     std::vector<uint32_t> polygon;
+    std::vector<float> channels(layout.faceChannelCount(), 0.0f);
+    const size_t firstFaceAttribute = layout.vertexAttributes.size();
     for (uint64_t i = 0; i < e.count; ++i) {
-        for (const Property& p : e.properties) {
+        const size_t trianglesBefore = mesh.indices.size() / 3;
+        for (size_t k = 0; k < e.properties.size(); ++k) {
+            const Property& p = e.properties[k];
+            if (layout.faceChannels[k] >= 0) {
+                const float value = attributeValue(src.real(p.type), p.type);
+                if (!std::isfinite(value)) src.error("face ", i, " has a non-finite ", p.name);
+                channels[size_t(layout.faceChannels[k])] = value;
+                continue;
+            }
             if (&p != layout.faceIndices) {
                 p.isList ? skipList(src, p) : src.skip(p.type);
                 continue;
@@ -232,7 +248,7 @@ void readFaces(Source& src, const Layout& layout, bool binary, TriangleMesh& mes
             const int64_t n = src.integer(p.countType);
             if (n < 3) src.error("face ", i, " has ", n, " vertices (needs at least 3)");
             polygon.clear();
-            for (int64_t k = 0; k < n; ++k) {
+            for (int64_t corner = 0; corner < n; ++corner) {
                 const int64_t index = src.integer(p.type);
                 if (index < 0 || uint64_t(index) >= vertexCount)
                     src.error("face ", i, " refers to vertex ", index, " but there are only ",
@@ -240,8 +256,15 @@ void readFaces(Source& src, const Layout& layout, bool binary, TriangleMesh& mes
                 polygon.push_back(static_cast<uint32_t>(index));
             }
             // Fan triangulation keeps the polygon's winding (convex polygons only).
-            for (size_t k = 1; k + 1 < polygon.size(); ++k)
-                mesh.indices.insert(mesh.indices.end(), {polygon[0], polygon[k], polygon[k + 1]});
+            for (size_t c = 1; c + 1 < polygon.size(); ++c)
+                mesh.indices.insert(mesh.indices.end(), {polygon[0], polygon[c], polygon[c + 1]});
+        }
+        // The face's attribute values, once for each triangle of its fan.
+        for (size_t t = trianglesBefore; t < mesh.indices.size() / 3; ++t) {
+            size_t channel = 0;
+            for (size_t a = 0; a < layout.faceAttributes.size(); ++a)
+                for (size_t c = 0; c < layout.faceAttributes[a].properties.size(); ++c)
+                    mesh.attributes[firstFaceAttribute + a].values.push_back(channels[channel++]);
         }
     }
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <memory>
 #include <optional>
 #include <span>
 
@@ -18,6 +19,13 @@ namespace {
 constexpr std::array<std::string_view, 9> kCommonKeys = {
     "name",    "type",    "emission",       "two_sided", "normal_map",
     "bump_map", "mapping", "opacity", "opacity_cutoff"};
+
+// A material inside a blend has only its kind: what every material may have
+// belongs on the blend.
+constexpr std::array<std::string_view, 1> kNestedKeys = {"type"};
+
+MaterialKind parseKind(const JsonValue& m, const fs::path& folder,
+                       std::span<const std::string_view> commonKeys);
 
 fs::path textureFile(const JsonValue& v, const fs::path& folder) {
     return resolveExistingFile(folder, v, "texture file");
@@ -36,9 +44,32 @@ Checkerboard parseCheckerboard(const JsonValue& v) {
     return c;
 }
 
+// {"attribute": name, ...}: a mesh attribute read as a texture (mesh_attribute.h).
+// Its keys are `own` besides "attribute"; the name must not be empty.
+void parseMeshAttribute(const JsonValue& v, std::initializer_list<std::string_view> own,
+                        TextureRef& out) {
+    for (const auto& item : v.raw().items()) {
+        if (item.key() == "attribute" ||
+            std::find(own.begin(), own.end(), item.key()) != own.end())
+            continue;
+        std::string allowed = "attribute";
+        for (std::string_view k : own) allowed += ", " + std::string(k);
+        v.get(item.key()).fail("not a key of a mesh attribute texture (allowed: ", allowed, ")");
+    }
+    out.meshAttribute = v.get("attribute").string();
+    if (out.meshAttribute.empty()) v.get("attribute").fail("must name an attribute");
+}
+
 // A colour given as a number, [r, g, b], {"texture": file, "scale": colour,
-// sampling keys} or {"checkerboard": {...}, "scale": colour}.
+// sampling keys}, {"attribute": name, "scale": colour} or {"checkerboard":
+// {...}, "scale": colour}.
 void parseTexturedColor(const JsonValue& v, const fs::path& folder, TexturedColor& out) {
+    if (v.raw().is_object() && v.has("attribute")) {
+        parseMeshAttribute(v, {"scale"}, out.texture);
+        out.value = Color(1.0f);
+        if (auto scale = v.find("scale")) out.value = scale->color();
+        return;
+    }
     if (v.raw().is_object()) {
         requireTextureKeys(v, {"texture", "checkerboard", "scale"});
         if (auto checker = v.find("checkerboard")) {
@@ -59,14 +90,18 @@ void parseTexturedColor(const JsonValue& v, const fs::path& folder, TexturedColo
     out.value = v.color();
 }
 
-// A scalar in [lo, hi] given as a number or {"texture": file, "channel": "g",
-// "scale": x, sampling keys}.
+// A scalar in [lo, hi] given as a number, {"texture": file, "channel": "g",
+// "scale": x, sampling keys} or {"attribute": name, "channel": "g", "scale": x}.
 void parseTexturedFloat(const JsonValue& v, const fs::path& folder, float lo, float hi,
                         TexturedFloat& out) {
     if (v.raw().is_object()) {
-        requireTextureKeys(v, {"texture", "channel", "scale"});
-        out.texture.file = textureFile(v.get("texture"), folder);
-        parseTextureSampling(v, out.texture);
+        if (v.has("attribute")) {
+            parseMeshAttribute(v, {"channel", "scale"}, out.texture);
+        } else {
+            requireTextureKeys(v, {"texture", "channel", "scale"});
+            out.texture.file = textureFile(v.get("texture"), folder);
+            parseTextureSampling(v, out.texture);
+        }
         out.value = 1.0f;
         if (auto scale = v.find("scale")) out.value = scale->numberIn(lo, hi);
         if (auto channel = v.find("channel")) {
@@ -98,6 +133,18 @@ public:
     void texturedFloat(std::string_view key, float lo, float hi, TexturedFloat& out) const {
         if (auto v = material_.find(key)) parseTexturedFloat(*v, folder_, lo, hi, out);
     }
+    // Two material objects of their kind's keys only (a blend's parts); required.
+    void materialPair(std::string_view key, std::array<std::unique_ptr<MaterialKindBox>, 2>& out) const {
+        const auto v = material_.find(key);
+        if (!v) material_.fail("needs '", key, "': [first, second], two material objects");
+        if (!v->raw().is_array())
+            v->fail("expected [first, second], two material objects, got ", v->describe());
+        if (v->size() != 2)
+            v->fail("expected [first, second], two material objects, got ", v->size());
+        for (size_t i = 0; i < 2; ++i)
+            out[i] = std::make_unique<MaterialKindBox>(
+                MaterialKindBox{parseKind(v->at(i), folder_, kNestedKeys)});
+    }
 
 private:
     const JsonValue& material_;
@@ -105,14 +152,15 @@ private:
 };
 
 void requireKeys(const JsonValue& v, const std::string& type,
+                 std::span<const std::string_view> commonKeys,
                  std::span<const std::string_view> kindKeys) {
     for (const auto& item : v.raw().items()) {
         const auto known = [&](std::span<const std::string_view> keys) {
             return std::find(keys.begin(), keys.end(), item.key()) != keys.end();
         };
-        if (known(kCommonKeys) || known(kindKeys)) continue;
+        if (known(commonKeys) || known(kindKeys)) continue;
         std::string list;
-        for (std::string_view k : kCommonKeys) list += (list.empty() ? "" : ", ") + std::string(k);
+        for (std::string_view k : commonKeys) list += (list.empty() ? "" : ", ") + std::string(k);
         for (std::string_view k : kindKeys) list += ", " + std::string(k);
         v.fail("unknown key '", item.key(), "' for a ", type, " material (allowed: ", list, ")");
     }
@@ -138,20 +186,27 @@ TextureMapping parseMapping(const JsonValue& v) {
     return mapping;
 }
 
-MaterialDesc parseMaterial(const JsonValue& m, const fs::path& folder) {
+// The kind of material object m ("type", diffuse by default) with its keys;
+// besides them m may have commonKeys.
+MaterialKind parseKind(const JsonValue& m, const fs::path& folder,
+                       std::span<const std::string_view> commonKeys) {
     if (!m.raw().is_object()) m.fail("expected an object, got ", m.describe());
-    MaterialDesc desc;
-    desc.where = m.pointer();
-    Material& mat = desc.material;
     static constexpr auto kTypes = kindNames<MaterialKind>();
     const std::string typeName =
         m.has("type") ? m.get("type").oneOf(kTypes) : std::string(DiffuseMaterial::kName);
     const MaterialReader reader(m, folder);
-    mat.kind = *withKindNamed<MaterialKind>(typeName, [&](auto kind) -> MaterialKind {
+    return *withKindNamed<MaterialKind>(typeName, [&](auto kind) -> MaterialKind {
         using Kind = typename decltype(kind)::type;
-        requireKeys(m, typeName, Kind::kKeys);
+        requireKeys(m, typeName, commonKeys, Kind::kKeys);
         return Kind::parse(reader);
     });
+}
+
+MaterialDesc parseMaterial(const JsonValue& m, const fs::path& folder) {
+    MaterialDesc desc;
+    desc.where = m.pointer();
+    Material& mat = desc.material;
+    mat.kind = parseKind(m, folder, kCommonKeys);
     if (auto emission = m.find("emission")) parseTexturedColor(*emission, folder, mat.emission);
     if (auto twoSided = m.find("two_sided")) mat.twoSidedEmission = twoSided->boolean();
     if (auto normal = m.find("normal_map")) {
@@ -184,6 +239,9 @@ MaterialDesc parseMaterial(const JsonValue& m, const fs::path& folder) {
         if (mat.emits())
             opacity->fail("an emitting material cannot have an opacity (cut-out emitters are "
                           "not supported)");
+        if (!mat.opacity.texture.meshAttribute.empty())
+            opacity->fail("an opacity is read where rays are tested, through the uvs only: a "
+                          "mesh attribute cannot be one");
         if (mat.mapping.kind == TextureMapping::Kind::Triplanar && !mat.opacity.texture.file.empty())
             opacity->fail("an opacity texture is read through the uvs: it cannot be mapped "
                           "triplanar");

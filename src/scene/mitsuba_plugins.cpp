@@ -263,8 +263,18 @@ private:
     // (normal maps).
     json texture(const Object& t, bool rawAllowed = false) {
         if (t.type == "checkerboard") return checkerboard(t);
+        if (t.type == "mesh_attribute") {
+            // Read per vertex (interpolated) or per face, by the name the
+            // PLY loader gives (docs/mesh-files.md, "Attributes").
+            allowOnly(t, {"name", "scale"});
+            const std::string name = text(t, "name", "");
+            if (name.empty()) unsupported(t, "needs a <string name=\"name\">");
+            json attribute = {{"attribute", name}};
+            if (t.property("scale")) attribute["scale"] = number(t, "scale", 1.0);
+            return attribute;
+        }
         if (t.type != "bitmap")
-            unsupported(t, "only bitmap and checkerboard textures are supported (not '" + t.type + "')");
+            unsupported(t, "only bitmap, checkerboard and mesh_attribute textures are supported (not '" + t.type + "')");
         allowOnly(t, {"filename", "raw", "filter_type", "wrap_mode", "to_uv"}, {"format"});
         if (boolean(t, "raw", false) && !rawAllowed)
             unsupported(t, "raw (no sRGB decoding of 8-bit images) is not supported yet");
@@ -318,6 +328,8 @@ private:
             m = {{"type", "diffuse"}, {"color", 0.5}};  // Mitsuba's default BSDF
         }
         if (emitter) {
+            if (bsdf && bsdf->type == "null")
+                unsupported(*bsdf, "an emitter with a null BSDF (an invisible light) is not supported");
             allowOnly(*emitter, {"radiance"});
             m["emission"] = color(*emitter, "radiance", 1.0);
             name += "+emitter@" + where(*emitter);
@@ -337,6 +349,12 @@ private:
         if (b.type == "normalmap") return normalMapMaterial(b);
         if (b.type == "bumpmap") return bumpMapMaterial(b);
         if (b.type == "mask") return maskMaterial(b);
+        if (b.type == "blendbsdf") return blendMaterial(b);
+        if (b.type == "null") {
+            // Invisible: every ray passes through (a surface that is all hole).
+            allowOnly(b, {});
+            return {{"type", "diffuse"}, {"opacity", 0}};
+        }
         if (b.type == "diffuse") {
             allowOnly(b, {"reflectance"});
             return {{"type", "diffuse"}, {"color", color(b, "reflectance", 0.5)}};
@@ -416,6 +434,30 @@ private:
         if (opacity.is_array()) unsupported(b, "the opacity must be one number or a texture");
         m["opacity"] = opacity;
         return m;
+    }
+
+    // Mitsuba's blendbsdf: (1 - weight) first + weight second, strahl's blend
+    // of the two nested BSDFs' kinds.
+    json blendMaterial(const Object& b) {
+        allowOnly(b, {"weight"});
+        std::vector<const Object*> parts;
+        for (const Child& c : b.children)
+            if (c.object->tag == "bsdf") parts.push_back(c.object.get());
+        if (parts.size() != 2) unsupported(b, "needs two nested <bsdf>s");
+        const bool given = b.property("weight") || std::any_of(b.children.begin(), b.children.end(),
+                                                               [](const Child& c) { return c.name == "weight"; });
+        if (!given) unsupported(b, "needs a weight");
+        json weight = color(b, "weight", 0.5);
+        if (weight.is_array()) unsupported(b, "the weight must be one number or a texture");
+        json materials = json::array();
+        for (const Object* part : parts) {
+            json m = bsdfMaterial(*part);
+            for (const char* key : {"normal_map", "bump_map", "opacity"})
+                if (m.contains(key))
+                    unsupported(*part, "a normalmap, bumpmap, mask or null BSDF inside a blendbsdf is not supported");
+            materials.push_back(m);
+        }
+        return {{"type", "blend"}, {"weight", weight}, {"materials", materials}};
     }
 
     // Mitsuba's microfacet BSDFs: its `distribution` (beckmann by default),

@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -46,6 +47,30 @@ bool hasTriangleWithArea(const TriangleMesh& mesh) {
 std::string shapeSource(const SceneDesc& desc, const ShapeDesc& shape) {
     return concat(desc.file.filename().string(), ": ", shape.where,
                   shape.file.empty() ? std::string() : " (" + shape.file.string() + ")");
+}
+
+// Every mesh attribute the shape's materials read must be on its mesh.
+void checkMeshAttributes(const SceneDesc& desc, const ShapeDesc& shape, const SceneShape& geometry,
+                         const World& world) {
+    for (const uint32_t index : geometry.materialOfSlot) {
+        Material material = world.materials[index];  // forEachTexture visits mutably
+        material.forEachTexture([&](const TextureRef& texture, TextureEncoding) {
+            const std::string& name = texture.meshAttribute;
+            if (name.empty()) return;
+            const auto& attributes = geometry.mesh.attributes;
+            if (std::any_of(attributes.begin(), attributes.end(),
+                            [&](const MeshAttribute& a) { return a.name == name; }))
+                return;
+            if (!geometry.isMesh())
+                fail(shapeSource(desc, shape), ": material '", material.name,
+                     "' reads the mesh attribute '", name, "', but this shape is not a mesh");
+            std::string have;
+            for (const MeshAttribute& a : attributes) have += (have.empty() ? "" : ", ") + a.name;
+            fail(shapeSource(desc, shape), ": material '", material.name, "' reads the mesh attribute '",
+                 name, "', which the mesh does not have (",
+                 have.empty() ? std::string("it has none") : "it has " + have, ")");
+        });
+    }
 }
 
 std::shared_ptr<const UserShape> makeImplicitShape(const SceneDesc& desc, const ShapeDesc& shape) {
@@ -294,6 +319,7 @@ BuiltScene buildScene(const SceneDesc& desc, const BuildOptions& options, BuildT
                 }
             }
         }
+        checkMeshAttributes(desc, shape, geometry, world);
         jobs[i].destination->push_back(std::move(geometry));
     }
     placeInstances(desc, flat, world);

@@ -217,5 +217,51 @@ TEST(ThinDielectric, ReflectsTheSheetsSummedReflectanceAndPassesStraightThrough)
     EXPECT_FALSE(sheet.isOpaque());
 }
 
+TEST(Blend, IsTheWeightedSumOfItsModels) {
+    const Bsdf a = Bsdf::diffuse(Color(0.0f, 0.5f, 0.5f)), b = Bsdf::diffuse(Color(1.0f, 1.0f, 0.0f));
+    const Bsdf mix = Bsdf::blend(a, b, 0.25f);
+    const Bsdf lambert = Bsdf::diffuse(0.75f * Color(0.0f, 0.5f, 0.5f) + 0.25f * Color(1.0f, 1.0f, 0.0f));
+    const Vec3 wo = direction(30.0f, 40.0f), wi = direction(50.0f, 250.0f);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(mix.f(wo, wi)[c], lambert.f(wo, wi)[c], 1e-7f);
+    EXPECT_NEAR(mix.pdf(wo, wi), lambert.pdf(wo, wi), 1e-7f);
+    EXPECT_NEAR(mix.albedo().g, lambert.albedo().g, 1e-7f);
+    // A sample reports the mixture's f and pdf, whichever model drew it.
+    for (float uLobe : {0.1f, 0.9f}) {
+        const auto s = mix.sample(wo, uLobe, Vec2(0.3f, 0.6f));
+        ASSERT_TRUE(s);
+        EXPECT_NEAR(s->pdf, lambert.pdf(wo, s->wi), 1e-6f);
+        EXPECT_NEAR(s->f.b, lambert.f(wo, s->wi).b, 1e-7f);
+    }
+    // Weights 0 and 1 leave one model; NaN is refused.
+    EXPECT_EQ(Bsdf::blend(a, b, 0.0f).f(wo, wi), a.f(wo, wi));
+    EXPECT_EQ(Bsdf::blend(a, b, 1.0f).f(wo, wi), b.f(wo, wi));
+    EXPECT_THROW(Bsdf::blend(a, b, std::numeric_limits<float>::quiet_NaN()), Error);
+}
+
+TEST(Blend, ADeltaLobeKeepsItsShareAndTheQueriesSeeEveryModel) {
+    const Bsdf glass = Bsdf::dielectric(1.5f, 0.0f), matte = Bsdf::diffuse(Color(0.5f));
+    const Bsdf mix = Bsdf::blend(glass, matte, 0.5f);
+    EXPECT_FALSE(mix.isSpecular());
+    EXPECT_FALSE(mix.isOpaque());
+    EXPECT_TRUE(Bsdf::blend(glass, Bsdf::thinDielectric(1.5f), 0.5f).isSpecular());
+    EXPECT_TRUE(Bsdf::blend(matte, Bsdf::plastic(Color(0.5f), 1.5f, 0.1f), 0.5f).isOpaque());
+    // uLobe below 1/2 picks the glass: a delta sample at half the glass's weight.
+    const Vec3 wo = direction(20.0f);
+    const auto s = mix.sample(wo, 0.2f, Vec2(0.5f));
+    const auto g = glass.sample(wo, 0.4f, Vec2(0.5f));
+    ASSERT_TRUE(s && g && s->specular);
+    EXPECT_NEAR(s->f.r * std::abs(s->wi.z) / s->pdf, g->f.r * std::abs(g->wi.z) / g->pdf, 1e-6f);
+}
+
+TEST(Blend, ABlendOfBlendsIsOneFlatSum) {
+    const Bsdf a = Bsdf::diffuse(Color(0.2f)), b = Bsdf::diffuse(Color(0.6f));
+    const Bsdf c = Bsdf::conductor(Color(0.2f), Color(3.0f), 0.3f, 0.3f);
+    const Bsdf nested = Bsdf::blend(Bsdf::blend(a, b, 0.5f), Bsdf::blend(c, a, 0.25f), 0.5f);
+    const Vec3 wo = direction(30.0f, 40.0f), wi = direction(50.0f, 250.0f);
+    const Color expected = 0.25f * a.f(wo, wi) + 0.25f * b.f(wo, wi) + 0.375f * c.f(wo, wi) +
+                           0.125f * a.f(wo, wi);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(nested.f(wo, wi)[k], expected[k], 1e-6f);
+}
+
 }  // namespace
 }  // namespace strahl

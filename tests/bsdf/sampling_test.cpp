@@ -44,6 +44,14 @@ std::vector<Case> nonDeltaModels() {
         {"smooth plastic", Bsdf::plastic(Color(0.6f, 0.3f, 0.1f), 1.5f, 0.0f)},
         {"metallic-roughness", Bsdf::metallicRoughness(Color(0.9f, 0.6f, 0.3f), 0.5f, 0.4f)},
         {"smooth metallic-roughness", Bsdf::metallicRoughness(Color(0.9f, 0.6f, 0.3f), 0.3f, 0.0f)},
+        {"blend of rough gold and lambert",
+         Bsdf::blend(Bsdf::conductor(gold.eta, gold.k, 0.2f, 0.2f), Bsdf::diffuse(Color(0.7f)), 0.4f)},
+        {"blend of smooth glass and rough plastic",
+         Bsdf::blend(Bsdf::dielectric(1.5f, 0.0f), Bsdf::plastic(Color(0.5f), 1.5f, 0.3f), 0.7f)},
+        {"blend of two blends",
+         Bsdf::blend(Bsdf::blend(Bsdf::diffuse(Color(0.2f)), Bsdf::phong(Color(0.3f), Color(0.6f), 20.0f), 0.5f),
+                     Bsdf::blend(Bsdf::dielectric(1.5f, 0.3f), Bsdf::conductor(gold.eta, gold.k, 0.0f, 0.0f), 0.5f),
+                     0.3f)},
     };
 }
 

@@ -17,7 +17,7 @@ TEST(MaterialKinds, NamesFollowTheVariantOrder) {
     const auto names = kindNames<MaterialKind>();
     const std::vector<std::string_view> expected = {
         "diffuse",         "phong",   "blinn",              "conductor", "dielectric",
-        "thin_dielectric", "plastic", "metallic_roughness", "emissive"};
+        "thin_dielectric", "plastic", "metallic_roughness", "blend",     "emissive"};
     EXPECT_EQ(std::vector<std::string_view>(names.begin(), names.end()), expected);
 }
 
@@ -38,6 +38,15 @@ TEST(MaterialKinds, KindNameOfAMaterial) {
     EXPECT_EQ(kindName(m.kind), "conductor");
 }
 
+// A blend's parts as the parser makes them.
+BlendMaterial blendOfPlasticAndDiffuse(float weight = 0.5f) {
+    BlendMaterial blend;
+    blend.parts[0] = std::make_unique<MaterialKindBox>(MaterialKindBox{PlasticMaterial{}});
+    blend.parts[1] = std::make_unique<MaterialKindBox>(MaterialKindBox{DiffuseMaterial{}});
+    blend.weight.value = weight;
+    return blend;
+}
+
 // How many textures each kind declares, plus the emission and the normal map
 // every material has.
 TEST(MaterialKinds, ForEachTextureVisitsTheKindsTexturesThenOpacityEmissionNormalAndBumpMap) {
@@ -45,7 +54,8 @@ TEST(MaterialKinds, ForEachTextureVisitsTheKindsTexturesThenOpacityEmissionNorma
         {DiffuseMaterial{}, 1},    {PhongMaterial{}, 1},     {BlinnMaterial{}, 1},
         {ConductorMaterial{}, 2},  {DielectricMaterial{}, 2}, {ThinDielectricMaterial{}, 1},
         {PlasticMaterial{}, 2},
-        {MetallicRoughnessMaterial{}, 3}, {EmissiveMaterial{}, 0}};
+        {MetallicRoughnessMaterial{}, 3}, {blendOfPlasticAndDiffuse(), 2 + 1 + 1},
+        {EmissiveMaterial{}, 0}};
     for (const auto& [kind, own] : cases) {
         Material m;
         m.kind = kind;
@@ -71,6 +81,18 @@ void expectSameBsdf(const Bsdf& a, const Bsdf& b, std::string_view what) {
     }
     EXPECT_EQ(a.isSpecular(), b.isSpecular()) << what;
     EXPECT_EQ(a.albedo(), b.albedo()) << what;
+}
+
+TEST(MaterialKinds, ABlendIsTheBlendOfItsPartsAndCopiesDeeply) {
+    const ShadingPoint sp;
+    const TextureMapping mapping;
+    const MaterialPoint p{sp, mapping, nullptr};
+    const BlendMaterial blend = blendOfPlasticAndDiffuse(0.3f);
+    expectSameBsdf(blend.bsdf(p),
+                   Bsdf::blend(PlasticMaterial{}.bsdf(p), DiffuseMaterial{}.bsdf(p), 0.3f), "blend");
+    BlendMaterial copy = blend;
+    std::get<DiffuseMaterial>(copy.parts[1]->kind).color.value = Color(0.1f);
+    EXPECT_EQ(std::get<DiffuseMaterial>(blend.parts[1]->kind).color.value, Color(0.8f));
 }
 
 TEST(MaterialKinds, DefaultParametersGiveTheDocumentedBsdf) {

@@ -7,14 +7,17 @@
 #include <algorithm>
 #include <bit>
 #include <charconv>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <string>
 #include <vector>
 
+#include "../../src/meshio/loader_tuning.h"  // internal to meshio: the sequential reader
 #include "strahl/core/error.h"
 #include "strahl/meshio/mesh_file.h"
 #include "test_support.h"
+#include "warning_capture.h"
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
@@ -171,6 +174,71 @@ TEST(PlyLoader, SameMeshInAllThreeEncodingsGivesIdenticalData) {
         EXPECT_EQ(loaded[i].mesh.normals, loaded[0].mesh.normals);
         EXPECT_EQ(loaded[i].mesh.uvs, loaded[0].mesh.uvs);
         EXPECT_EQ(loaded[i].mesh.indices, loaded[0].mesh.indices);
+    }
+}
+
+// The values of the attribute called `name` (and its scope and channels).
+const MeshAttribute& attribute(const TriangleMesh& m, const std::string& name) {
+    for (const MeshAttribute& a : m.attributes)
+        if (a.name == name) return a;
+    ADD_FAILURE() << "no attribute " << name;
+    static const MeshAttribute none;
+    return none;
+}
+
+TEST(PlyLoader, AttributesAreGroupedByMitsubasNamesInEveryEncodingAndBothReaders) {
+    // Vertex: red green blue (8-bit, sRGB-decoded), dir_x dir_y dir_z, heat_0
+    // (one channel), pair_0 pair_1 (two channels: skipped with a warning) and
+    // confidence (no suffix: skipped). Face: color_0..2 and weight_0 around
+    // the index list; the quad's values go to both of its triangles.
+    ElementSpec vertex{"vertex",
+                       {"float x", "float y", "float z", "uchar red", "uchar green", "uchar blue",
+                        "float dir_x", "float dir_y", "float dir_z", "float heat_0",
+                        "float pair_0", "float pair_1", "float confidence"},
+                       {}};
+    const float p[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for (int i = 0; i < 4; ++i)
+        vertex.rows.push_back({{"float", p[i][0]}, {"float", p[i][1]}, {"float", 0},
+                               {"uchar", 255}, {"uchar", 0}, {"uchar", double(10 * i)},
+                               {"float", 1}, {"float", 2}, {"float", 3}, {"float", 0.5 * i},
+                               {"float", 7}, {"float", 8}, {"float", 9}});
+    const ElementSpec face{"face",
+                           {"float color_0", "float color_1", "list uchar int vertex_indices",
+                            "float color_2", "float weight_0"},
+                           {{{"float", 0.25}, {"float", 0.5}, {"uchar", 4}, {"int", 0}, {"int", 1},
+                             {"int", 2}, {"int", 3}, {"float", 0.75}, {"float", 0.125}},
+                            {{"float", 1}, {"float", 0}, {"uchar", 3}, {"int", 0}, {"int", 2},
+                             {"int", 1}, {"float", 0}, {"float", 1}}}};
+    for (const char* format : kFormats) {
+        SCOPED_TRACE(format);
+        const std::string text = plyText(format, {vertex, face});
+        test::WarningCapture warnings;
+        const LoadedMesh loaded = loadPly(writePly("ply-attributes", text));
+        EXPECT_THAT(warnings.text(), HasSubstr("properties pair_* are not an attribute (2 channels, not 1 or 3): skipped"));
+        const TriangleMesh& m = loaded.mesh;
+        ASSERT_EQ(m.attributes.size(), 5u);
+        const MeshAttribute& color = attribute(m, "vertex_color");
+        EXPECT_EQ(color.scope, MeshAttribute::Scope::Vertex);
+        ASSERT_EQ(color.channels, 3);
+        ASSERT_EQ(color.values.size(), 12u);
+        EXPECT_EQ(color.values[0], 1.0f);
+        EXPECT_EQ(color.values[1], 0.0f);
+        EXPECT_NEAR(color.values[3 * 3 + 2], std::pow((30.0 / 255 + 0.055) / 1.055, 2.4), 1e-6);
+        EXPECT_EQ(attribute(m, "vertex_dir").values,
+                  (std::vector<float>{1, 2, 3, 1, 2, 3, 1, 2, 3, 1, 2, 3}));
+        EXPECT_EQ(attribute(m, "vertex_heat").values, (std::vector<float>{0, 0.5f, 1, 1.5f}));
+        const MeshAttribute& faceColor = attribute(m, "face_color");
+        EXPECT_EQ(faceColor.scope, MeshAttribute::Scope::Face);
+        EXPECT_EQ(faceColor.values, (std::vector<float>{0.25f, 0.5f, 0.75f, 0.25f, 0.5f, 0.75f, 1, 0, 0}));
+        EXPECT_EQ(attribute(m, "face_weight").values, (std::vector<float>{0.125f, 0.125f, 1}));
+        EXPECT_NO_THROW(m.validate("ply-attributes"));
+        // The generic reader (which reads every ascii body) gives the same.
+        const LoadedMesh sequential = meshio::decodePly(text, "ply-attributes.ply", false);
+        ASSERT_EQ(sequential.mesh.attributes.size(), m.attributes.size());
+        for (size_t a = 0; a < m.attributes.size(); ++a) {
+            EXPECT_EQ(sequential.mesh.attributes[a].name, m.attributes[a].name);
+            EXPECT_EQ(sequential.mesh.attributes[a].values, m.attributes[a].values);
+        }
     }
 }
 

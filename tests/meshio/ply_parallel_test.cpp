@@ -118,6 +118,9 @@ void expectSameMesh(const TriangleMesh& a, const TriangleMesh& b) {
     EXPECT_TRUE(sameBits(a.normals, b.normals));
     EXPECT_TRUE(sameBits(a.uvs, b.uvs));
     EXPECT_TRUE(sameBits(a.indices, b.indices));
+    ASSERT_EQ(a.attributes.size(), b.attributes.size());
+    for (size_t i = 0; i < a.attributes.size(); ++i)
+        EXPECT_TRUE(sameBits(a.attributes[i].values, b.attributes[i].values)) << a.attributes[i].name;
     EXPECT_TRUE(a.faceMaterials.empty() && b.faceMaterials.empty());
     EXPECT_TRUE(a.isPadded() && b.isPadded());
 }

@@ -220,6 +220,40 @@ TEST(MitsubaImport, AMaskIsTheOpacityOfItsNestedBsdf) {
                 HasSubstr("the opacity must be one number or a texture"));
 }
 
+TEST(MitsubaImport, ABlendbsdfIsABlendOfItsTwoBsdfsWeightedByANumberOrAMeshAttribute) {
+    const auto blend = cubeMaterial<BlendMaterial>(R"(<bsdf type="blendbsdf">
+        <float name="weight" value="0.3"/>
+        <bsdf type="diffuse"/><bsdf type="twosided"><bsdf type="roughconductor"/></bsdf></bsdf>)");
+    EXPECT_EQ(blend.weight.value, 0.3f);
+    EXPECT_TRUE(std::holds_alternative<DiffuseMaterial>(blend.parts[0]->kind));
+    EXPECT_TRUE(std::holds_alternative<ConductorMaterial>(blend.parts[1]->kind));
+    const auto attributed = cubeMaterial<BlendMaterial>(R"(<bsdf type="blendbsdf">
+        <texture type="mesh_attribute" name="weight"><string name="name" value="face_weight"/></texture>
+        <bsdf type="diffuse"/><bsdf type="diffuse"/></bsdf>)");
+    EXPECT_EQ(attributed.weight.texture.meshAttribute, "face_weight");
+    const auto coloured = cubeMaterial<DiffuseMaterial>(R"(<bsdf type="diffuse">
+        <texture type="mesh_attribute" name="reflectance"><string name="name" value="vertex_color"/>
+        <float name="scale" value="0.5"/></texture></bsdf>)");
+    EXPECT_EQ(coloured.color.texture.meshAttribute, "vertex_color");
+    EXPECT_EQ(coloured.color.value, Color(0.5f));
+
+    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="blendbsdf"><float name="weight" value="0.5"/><bsdf type="diffuse"/></bsdf></shape>)")),
+                HasSubstr(R"(<bsdf type="blendbsdf">: needs two nested <bsdf>s)"));
+    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="blendbsdf"><bsdf type="diffuse"/><bsdf type="diffuse"/></bsdf></shape>)")),
+                HasSubstr(R"(<bsdf type="blendbsdf">: needs a weight)"));
+    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="blendbsdf"><float name="weight" value="0.5"/>
+        <bsdf type="diffuse"/><bsdf type="mask"><bsdf type="diffuse"/></bsdf></bsdf></shape>)")),
+                HasSubstr(R"(<bsdf type="mask">: a normalmap, bumpmap, mask or null BSDF inside a blendbsdf is not supported)"));
+}
+
+TEST(MitsubaImport, ANullBsdfIsAnInvisibleSurfaceButNoInvisibleLight) {
+    const SceneDesc d = parse(scene(R"(<shape type="cube"><bsdf type="null"/></shape>)"));
+    ASSERT_EQ(d.materials.size(), 2u);
+    EXPECT_EQ(d.materials[1].material.opacity.value, 0.0f);
+    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="null"/><emitter type="area"/></shape>)")),
+                HasSubstr(R"(<bsdf type="null">: an emitter with a null BSDF (an invisible light) is not supported)"));
+}
+
 TEST(MitsubaImport, ANormalmapIsTheNormalMapOfItsNestedBsdfWithTerminatorShadowing) {
     const fs::path dir = test::scratchDir("mitsuba-normalmap");
     test::writeFile(dir / "n.png", "not read while parsing");

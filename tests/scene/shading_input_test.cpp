@@ -62,7 +62,7 @@ const std::string kNotAnImage = "this is a text file, not an image\n";
 TEST(ShadingInput, UnknownMaterialTypeListsTheTypes) {
     EXPECT_EQ(materialError(R"({"name": "m", "type": "velvet"})"),
               "scene.json: /materials/0/type: must be one of diffuse, phong, blinn, conductor, "
-              "dielectric, thin_dielectric, plastic, metallic_roughness, emissive, got 'velvet'");
+              "dielectric, thin_dielectric, plastic, metallic_roughness, blend, emissive, got 'velvet'");
 }
 
 TEST(ShadingInput, KeyOfAnotherTypeListsTheAllowedKeys) {
@@ -127,6 +127,29 @@ TEST(ShadingInput, MicrofacetModelKeys) {
               "scene.json: /materials/0: 'roughness_u' and 'roughness_v' go together");
     EXPECT_EQ(materialError(R"({"name": "m", "type": "plastic", "coat_transmittance": 1})"),
               "scene.json: /materials/0/coat_transmittance: expected a string, got number 1");
+}
+
+TEST(ShadingInput, BlendKeys) {
+    EXPECT_EQ(materialError(R"({"name": "m", "type": "blend"})"),
+              "scene.json: /materials/0: needs 'materials': [first, second], two material objects");
+    EXPECT_EQ(materialError(R"({"name": "m", "type": "blend", "materials": [{"type": "diffuse"}]})"),
+              "scene.json: /materials/0/materials: expected [first, second], two material objects, "
+              "got 1");
+    EXPECT_EQ(materialError(R"({"name": "m", "type": "blend", "materials": [{}, {"emission": 1}]})"),
+              "scene.json: /materials/0/materials/1: unknown key 'emission' for a diffuse material "
+              "(allowed: type, color, diffuse)");
+    EXPECT_EQ(materialError(R"({"name": "m", "type": "blend", "weight": 2, "materials": [{}, {}]})"),
+              "scene.json: /materials/0/weight: must be in [0, 1], got 2");
+    const SceneDesc ok = parseSceneText(
+        R"({"materials": [{"name": "m", "type": "blend", "weight": 0.25, "materials": [)"
+        R"({"type": "conductor", "metal": "gold"}, {"type": "blend", "materials": [{}, {"color": 0.1}]}]}], )" +
+            kTriangle + "}",
+        "scene.json");
+    const auto& blend = std::get<BlendMaterial>(ok.materials.at(0).material.kind);
+    EXPECT_EQ(blend.weight.value, 0.25f);
+    EXPECT_TRUE(std::holds_alternative<ConductorMaterial>(blend.parts[0]->kind));
+    const auto& inner = std::get<BlendMaterial>(blend.parts[1]->kind);
+    EXPECT_EQ(std::get<DiffuseMaterial>(inner.parts[1]->kind).color.value, Color(0.1f));
 }
 
 TEST(ShadingInput, BumpMapKeys) {

@@ -15,10 +15,12 @@
 //    probability of the lobe; f() and pdf() return 0 for them.
 // Derivations and references: docs/materials.md.
 
+#include <memory>
 #include <optional>
 #include <span>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 #include "strahl/bsdf/bsdf_models.h"
 #include "strahl/core/math.h"
@@ -35,7 +37,7 @@ std::span<const MetalPreset> metalPresets();
 std::optional<MetalPreset> findMetalPreset(std::string_view name);
 
 // One scattering model (bsdf_models.h) with validated parameters, made by the
-// factories below.
+// factories below, or a weighted sum of them (blend()).
 class Bsdf {
 public:
     Bsdf() = default;  // black()
@@ -79,6 +81,11 @@ public:
     // alpha are clamped to [0, 1].
     static Bsdf metallicRoughness(const Color& base, float metallic, float alpha,
                                   float eta = 1.5f);
+    // (1 - weight) a + weight b (Mitsuba's blendbsdf, pbrt's mix): f and pdf
+    // are the weighted sums, a sample picks a or b with probability 1 - weight
+    // or weight. weight is clamped to [0, 1]; at 0 or 1 the result is a or b.
+    // A blend of blends is one flat sum.
+    static Bsdf blend(const Bsdf& a, const Bsdf& b, float weight);
 
     Color f(const Vec3& wo, const Vec3& wi) const;
     float pdf(const Vec3& wo, const Vec3& wi) const;
@@ -96,9 +103,20 @@ public:
     static float roughnessToAlpha(float roughness) { return roughness * roughness; }
 
 private:
-    Bsdf(BsdfModel model, const Color& albedo) : model_(std::move(model)), albedo_(albedo) {}
+    struct WeightedModel {
+        BsdfModel model;
+        float weight;
+    };
+    using Sum = std::vector<WeightedModel>;
 
+    Bsdf(BsdfModel model, const Color& albedo) : model_(std::move(model)), albedo_(albedo) {}
+    // The models of this BSDF with their weights (one of weight 1 unless blended).
+    Sum terms() const;
+
+    // One model, built at every path vertex and so kept small; a blend (rare)
+    // holds its weighted models on the heap instead, shared by copies.
     BsdfModel model_;
+    std::shared_ptr<const Sum> sum_;  // non-null: a blend, and model_ unused
     Color albedo_{0.0f};  // albedo(), computed by the factory
 };
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "strahl/core/math.h"
+#include "strahl/geometry/mesh_attribute.h"
 
 namespace strahl {
 
@@ -19,13 +20,14 @@ struct SurfaceInteraction {
     Vec3 dpdv{0.0f};    // tangent along v (bump maps); zero if unknown
     float uvDensity = 0.0f;  // uv units per world unit near p (texture footprints); 0 if unknown
     uint32_t materialSlot = 0;  // faceMaterials entry, 0 if the mesh has none
+    MeshAttributePoint attributes;  // a mesh's named attributes here (none elsewhere)
 };
 
 // An interaction computed in an instance's object space, moved to world space:
 // p mapped with its error bound widened for the map's rounding, normals mapped
 // by `normalToWorld` (the inverse transpose of objectToWorld's linear part) and
 // renormalised, dpdu and dpdv by the linear part (uvDensity divided by its mean
-// scale); uv and the material slot are unchanged.
+// scale); uv, the material slot and the attributes are unchanged.
 SurfaceInteraction transformInteraction(const SurfaceInteraction& si, const Mat4& objectToWorld,
                                         const Mat3& normalToWorld);
 

@@ -1,6 +1,7 @@
 #pragma once
-// TriangleMesh: indexed triangles with optional per-vertex normals and UVs and
-// an optional per-triangle material slot. Pure data and math, no Embree.
+// TriangleMesh: indexed triangles with optional per-vertex normals and UVs, an
+// optional per-triangle material slot and named vertex or face attributes.
+// Pure data and math, no Embree.
 
 #include <cstdint>
 #include <string>
@@ -8,6 +9,7 @@
 
 #include "strahl/core/bounds.h"
 #include "strahl/core/math.h"
+#include "strahl/geometry/mesh_attribute.h"
 #include "strahl/geometry/surface_interaction.h"
 
 namespace strahl {
@@ -18,6 +20,7 @@ struct TriangleMesh {
     std::vector<Vec2> uvs;        // empty, or one per position
     std::vector<uint32_t> indices;  // three per triangle, counter-clockwise = front
     std::vector<uint32_t> faceMaterials;  // empty, or one slot per triangle
+    std::vector<MeshAttribute> attributes;  // what textures may read (mesh_attribute.h)
 
     size_t triangleCount() const { return indices.size() / 3; }
     size_t vertexCount() const { return positions.size(); }
@@ -40,7 +43,8 @@ struct TriangleMesh {
     void flipOrientation();
 
     // Throws strahl::Error naming `source` on a NaN/Inf coordinate, an index out
-    // of range, or attribute arrays whose sizes disagree with the positions.
+    // of range, or attribute arrays whose sizes disagree with the positions
+    // (or, for face attributes, the triangles).
     void validate(const std::string& source) const;
 
     // Embree reads vertex buffers with 16-byte loads, so a buffer shared with it

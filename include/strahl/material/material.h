@@ -44,7 +44,7 @@ struct Material {
     // Emission that does not vary over the surface (no texture): such
     // triangles become area lights for next-event estimation.
     bool hasUniformEmission() const {
-        return emits() && !emission.texture.valid() && !emission.checkerboard;
+        return emits() && !emission.texture.varies() && !emission.checkerboard;
     }
     // Whether some of the surface may be a hole.
     bool cutsOut() const { return opacity.value < 1.0f || !opacity.texture.file.empty(); }

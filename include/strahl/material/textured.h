@@ -8,15 +8,19 @@
 #include <optional>
 
 #include "strahl/core/math.h"
+#include "strahl/geometry/surface_interaction.h"
 #include "strahl/texture/texture_system.h"
 
 namespace strahl {
 
 // A texture a material uses: the file the scene names (set when the scene is
 // parsed) and its handle in the texture system (set when the world is built),
-// with how it is sampled and where it is placed.
+// with how it is sampled and where it is placed. Colour and scalar inputs may
+// instead read a mesh attribute by name (no file; the world checks that every
+// mesh with the material has it).
 struct TextureRef {
     std::filesystem::path file;
+    std::string meshAttribute;
     TextureHandle handle;
     TextureSampling sampling;  // wrap and filter (texture_system.h)
     // An affine map of the image coordinates (s, t) = (u, 1 − v) applied
@@ -24,6 +28,8 @@ struct TextureRef {
     Mat3 stTransform{1.0f};
 
     bool valid() const { return handle.valid(); }
+    // Whether the value varies over the surface (an image or an attribute).
+    bool varies() const { return valid() || !file.empty() || !meshAttribute.empty(); }
 };
 
 // A procedural checkerboard (Mitsuba's `checkerboard`): in the texture
@@ -37,14 +43,16 @@ struct Checkerboard {
     Color at(Vec2 uv) const;
 };
 
-// A colour, optionally multiplied by a texture's RGB or a checkerboard.
+// A colour, optionally multiplied by a texture's RGB (an image's or a mesh
+// attribute's) or a checkerboard.
 struct TexturedColor {
     Color value{1.0f};
     TextureRef texture;
     std::optional<Checkerboard> checkerboard = std::nullopt;  // exclusive with texture
 };
 
-// A scalar, optionally multiplied by one channel of a texture.
+// A scalar, optionally multiplied by one channel of a texture (an image's or
+// a mesh attribute's).
 struct TexturedFloat {
     float value = 0.0f;
     TextureRef texture;
@@ -67,7 +75,14 @@ struct ShadingPoint {
     Vec3 dpdv{0.0f};   // tangent along v (bump maps); zero if unknown
     Vec2 uv{0.0f};     // texture coordinates, v up
     float footprint = 0.0f;  // ray footprint width in uv units (texture filtering)
+    // The hit mesh's attributes (mesh_attribute.h), owned by the interaction; null without.
+    const MeshAttributePoint* attributes = nullptr;
 };
+
+// The shading point of an interaction, with a footprint in world units
+// (converted to uv units by the interaction's uv density); it refers to the
+// interaction's attributes, so the interaction must outlive it.
+ShadingPoint shadingPointAt(const SurfaceInteraction& si, float footprint = 0.0f);
 
 // `texture` at image coordinates st = (u, 1 − v), before its stTransform,
 // through its sampling; footprint in st units (scaled by the transform).
