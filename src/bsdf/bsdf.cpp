@@ -130,6 +130,21 @@ Bsdf Bsdf::metallicRoughness(const Color& base, float metallic, float alpha, flo
                 b);
 }
 
+Bsdf Bsdf::principled(const PrincipledParameters& parameters) {
+    requireColor("principled", "base colour", parameters.base);
+    const PrincipledParameters& p = parameters;
+    for (const float x : {p.roughness, p.anisotropic, p.metallic, p.specularTint, p.sheen,
+                          p.sheenTint, p.clearcoat, p.clearcoatGloss, p.transmission, p.flatness,
+                          p.diffuseTransmission})
+        if (std::isnan(x)) fail("principled: a parameter is NaN");
+    if (!(p.eta > 1.0f && p.eta <= 4.0f))
+        fail("principled: the index of refraction must be in (1, 4], got ", p.eta);
+    auto lobes = std::make_shared<const PrincipledLobes>(p);
+    // albedo: the diffuse colour of the dielectric and the F0 of the metal.
+    const Color albedo = lobes->p.base;
+    return Bsdf(PrincipledModel{std::move(lobes)}, albedo);
+}
+
 Bsdf::Sum Bsdf::terms() const {
     return sum_ ? *sum_ : Sum{{model_, 1.0f}};
 }
@@ -152,6 +167,16 @@ Bsdf Bsdf::blend(const Bsdf& a, const Bsdf& b, float weight) {
 
 namespace {
 
+// Whether a model is opaque: its kOpaque, or its opaque() where that depends
+// on its parameters.
+template <typename Model>
+bool isOpaqueModel(const Model& model) {
+    if constexpr (requires { model.opaque(); })
+        return model.opaque();
+    else
+        return Model::kOpaque;
+}
+
 // fn(model, wo, wi) under the mirror-image rule: an opaque model sees both
 // directions flipped into the upper hemisphere, and scatters nothing (`none`)
 // when they are on opposite sides or wo lies on the horizon.
@@ -159,9 +184,7 @@ template <typename Result, typename Fn>
 Result evaluate(const BsdfModel& bsdf, Vec3 wo, Vec3 wi, Result none, Fn&& fn) {
     return std::visit(
         [&](const auto& model) -> Result {
-            if constexpr (std::decay_t<decltype(model)>::kOpaque) {
-                if (!toUpperHemisphere(wo, wi)) return none;
-            }
+            if (isOpaqueModel(model) && !toUpperHemisphere(wo, wi)) return none;
             return fn(model, wo, wi);
         },
         bsdf);
@@ -192,15 +215,12 @@ std::optional<BsdfSample> sampleModel(const BsdfModel& bsdf, const Vec3& wo, flo
                                       const Vec2& u) {
     return std::visit(
         [&](const auto& model) -> std::optional<BsdfSample> {
-            if constexpr (!std::decay_t<decltype(model)>::kOpaque) {
-                return model.sample(wo, uLobe, u);
-            } else {
-                const bool flip = wo.z < 0.0f;
-                const Vec3 o(wo.x, wo.y, std::abs(wo.z));
-                auto s = model.sample(o, uLobe, u);
-                if (s && flip) s->wi.z = -s->wi.z;
-                return s;
-            }
+            if (!isOpaqueModel(model)) return model.sample(wo, uLobe, u);
+            const bool flip = wo.z < 0.0f;
+            const Vec3 o(wo.x, wo.y, std::abs(wo.z));
+            auto s = model.sample(o, uLobe, u);
+            if (s && flip) s->wi.z = -s->wi.z;
+            return s;
         },
         bsdf);
 }
@@ -249,7 +269,7 @@ bool Bsdf::isSpecular() const {
 
 bool Bsdf::isOpaque() const {
     const auto opaque = [](const BsdfModel& m) {
-        return std::visit([](const auto& model) { return std::decay_t<decltype(model)>::kOpaque; }, m);
+        return std::visit([](const auto& model) { return isOpaqueModel(model); }, m);
     };
     if (!sum_) return opaque(model_);
     return std::all_of(sum_->begin(), sum_->end(), [&](const WeightedModel& t) { return opaque(t.model); });

@@ -62,6 +62,7 @@ Color evaluateColor(const TexturedColor& c, const TextureMapping& mapping, const
 
 float evaluateFloat(const TexturedFloat& f, const TextureMapping& mapping, const ShadingPoint& sp,
                     const TextureSystem* textures) {
+    if (f.checkerboard) return f.value * f.checkerboard->at(sp.uv).r;
     if (!f.texture.meshAttribute.empty())
         return sp.attributes ? f.value * sp.attributes->value(f.texture.meshAttribute)[f.channel] : 0.0f;
     if (!f.texture.valid() || !textures) return f.value;

@@ -91,12 +91,22 @@ void parseTexturedColor(const JsonValue& v, const fs::path& folder, TexturedColo
 }
 
 // A scalar in [lo, hi] given as a number, {"texture": file, "channel": "g",
-// "scale": x, sampling keys} or {"attribute": name, "channel": "g", "scale": x}.
+// "scale": x, sampling keys}, {"attribute": name, "channel": "g", "scale": x}
+// or {"checkerboard": {"color0": x, "color1": y, "scale": s}, "scale": x}.
 void parseTexturedFloat(const JsonValue& v, const fs::path& folder, float lo, float hi,
                         TexturedFloat& out) {
     if (v.raw().is_object()) {
         if (v.has("attribute")) {
             parseMeshAttribute(v, {"channel", "scale"}, out.texture);
+        } else if (auto checker = v.find("checkerboard")) {
+            // Squares of two numbers: the scalar is the number, no channel.
+            for (const auto& item : v.raw().items())
+                if (item.key() != "checkerboard" && item.key() != "scale")
+                    v.get(item.key()).fail("not a key of a checkerboard (allowed: checkerboard, scale)");
+            for (const char* key : {"color0", "color1"})
+                if (auto c = checker->find(key); c && !c->raw().is_number())
+                    c->fail("a scalar checkerboard takes numbers, got ", c->describe());
+            out.checkerboard = parseCheckerboard(*checker);
         } else {
             requireTextureKeys(v, {"texture", "channel", "scale"});
             out.texture.file = textureFile(v.get("texture"), folder);

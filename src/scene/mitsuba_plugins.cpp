@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <span>
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -27,8 +28,8 @@ using json = nlohmann::json;
 // The parameters a plugin reads; any other is an error rather than a setting
 // silently ignored. `ignored` are parameters that do not change the expected
 // image (output formats, far clip planes).
-void allowOnly(const Object& o, std::initializer_list<const char*> read,
-               std::initializer_list<const char*> ignored = {}) {
+void allowOnlyNames(const Object& o, std::span<const char* const> read,
+                    std::span<const char* const> ignored) {
     for (const Property& p : o.properties) {
         const auto is = [&](const char* name) { return p.name == name; };
         if (std::none_of(read.begin(), read.end(), is) &&
@@ -36,6 +37,11 @@ void allowOnly(const Object& o, std::initializer_list<const char*> read,
             fail(p.place.text(), ": ", o.element(), ": the parameter '", p.name,
                  "' is not supported (docs/mitsuba.md lists what is)");
     }
+}
+
+void allowOnly(const Object& o, std::initializer_list<const char*> read,
+               std::initializer_list<const char*> ignored = {}) {
+    allowOnlyNames(o, std::span(read.begin(), read.size()), std::span(ignored.begin(), ignored.size()));
 }
 
 double number(const Object& o, const std::string& name, double fallback) {
@@ -204,6 +210,20 @@ private:
         fail(p->place.text(), ": '", name, "' must be <rgb>, <spectrum>, <float> or a texture");
     }
 
+    // A scalar parameter: a number, a bitmap or a checkerboard (a colour
+    // where one number is needed is refused). Mitsuba reads a checkerboard
+    // as a scalar with the colours the other way round than as a colour (its
+    // eval_1 takes color0 where eval takes color1), so they are exchanged.
+    json scalar(const Object& o, const std::string& name, double fallback) {
+        json value = color(o, name, fallback);
+        if (value.is_array()) unsupported(o, "'" + name + "' must be one number or a texture");
+        if (value.is_object() && value.contains("checkerboard")) {
+            json& checker = value["checkerboard"];
+            std::swap(checker["color0"], checker["color1"]);
+        }
+        return value;
+    }
+
     // A <spectrum> as Mitsuba's RGB variants read it (docs/mitsuba.md):
     // wavelength:value pairs integrated against the CIE curves (weighted by
     // D65 for a reflectance; clamped to [0, 1] unless it is emitted light or
@@ -364,6 +384,7 @@ private:
         if (base == "conductor") return conductor(b, rough);
         if (base == "dielectric") return dielectric(b, rough);
         if (base == "plastic") return plastic(b, rough);
+        if (b.type == "principled" || b.type == "principledthin") return principled(b);
         if (b.type == "thindielectric") {
             allowOnly(b, {"int_ior", "ext_ior", "specular_reflectance", "specular_transmittance"});
             requireUntinted(b, {"specular_reflectance", "specular_transmittance"});
@@ -430,9 +451,7 @@ private:
         allowOnly(b, {"opacity"});
         json m = nestedMaterial(b);
         if (m.contains("opacity")) unsupported(b, "a mask inside a mask is not supported");
-        json opacity = color(b, "opacity", 0.5);
-        if (opacity.is_array()) unsupported(b, "the opacity must be one number or a texture");
-        m["opacity"] = opacity;
+        m["opacity"] = scalar(b, "opacity", 0.5);
         return m;
     }
 
@@ -447,8 +466,7 @@ private:
         const bool given = b.property("weight") || std::any_of(b.children.begin(), b.children.end(),
                                                                [](const Child& c) { return c.name == "weight"; });
         if (!given) unsupported(b, "needs a weight");
-        json weight = color(b, "weight", 0.5);
-        if (weight.is_array()) unsupported(b, "the weight must be one number or a texture");
+        const json weight = scalar(b, "weight", 0.5);
         json materials = json::array();
         for (const Object* part : parts) {
             json m = bsdfMaterial(*part);
@@ -458,6 +476,52 @@ private:
             materials.push_back(m);
         }
         return {{"type", "blend"}, {"weight", weight}, {"materials", materials}};
+    }
+
+    // Mitsuba's principled and principledthin: strahl's principled, which is
+    // defined as Mitsuba's (docs/materials.md, Principled), its parameters
+    // renamed; the sampling rates change only the noise.
+    json principled(const Object& b) {
+        const bool thin = b.type == "principledthin";
+        static const std::vector<std::pair<const char*, const char*>> kSolid = {
+            {"roughness", "roughness"}, {"anisotropic", "anisotropic"}, {"metallic", "metallic"},
+            {"spec_tint", "specular_tint"}, {"sheen", "sheen"}, {"sheen_tint", "sheen_tint"},
+            {"clearcoat", "clearcoat"}, {"clearcoat_gloss", "clearcoat_gloss"},
+            {"spec_trans", "transmission"}, {"flatness", "flatness"}};
+        static const std::vector<std::pair<const char*, const char*>> kThin = {
+            {"roughness", "roughness"}, {"anisotropic", "anisotropic"}, {"spec_tint", "specular_tint"},
+            {"sheen", "sheen"}, {"sheen_tint", "sheen_tint"}, {"spec_trans", "transmission"},
+            {"flatness", "flatness"}, {"diff_trans", "diffuse_transmission"}};
+        const auto& names = thin ? kThin : kSolid;
+        std::vector<const char*> allowed = {"base_color", "eta"};
+        for (const auto& [mitsuba, strahl] : names) allowed.push_back(mitsuba);
+        if (!thin) allowed.push_back("specular");
+        const std::vector<const char*> rates =
+            thin ? std::vector<const char*>{"specular_reflectance_sampling_rate",
+                                            "specular_transmittance_sampling_rate",
+                                            "diffuse_reflectance_sampling_rate",
+                                            "diffuse_transmittance_sampling_rate"}
+                 : std::vector<const char*>{"diffuse_reflectance_sampling_rate",
+                                            "main_specular_sampling_rate", "clearcoat_sampling_rate"};
+        allowOnlyNames(b, allowed, rates);
+        for (const Child& c : b.children)
+            if (std::none_of(allowed.begin(), allowed.end(), [&](const char* n) { return c.name == n; }))
+                unsupported(*c.object, "not a parameter of " + b.type + " (docs/mitsuba.md lists them)");
+        json m = {{"type", "principled"}, {"color", color(b, "base_color", 0.5)}};
+        if (thin) m["thin"] = true;
+        for (const auto& [mitsuba, strahl] : names) {
+            const bool given = b.property(mitsuba) != nullptr ||
+                               std::any_of(b.children.begin(), b.children.end(),
+                                           [&](const Child& c) { return c.name == mitsuba; });
+            if (!given) continue;
+            m[strahl] = scalar(b, mitsuba, 0.0);
+        }
+        for (const Child& c : b.children)
+            if (c.name == "eta") unsupported(*c.object, "a textured 'eta' is not supported");
+        if (b.property("eta") && b.property("specular")) unsupported(b, "give either eta or specular");
+        if (b.property("eta")) m["ior"] = number(b, "eta", 1.5);
+        if (b.property("specular")) m["specular"] = number(b, "specular", 0.5);
+        return m;
     }
 
     // Mitsuba's microfacet BSDFs: its `distribution` (beckmann by default),

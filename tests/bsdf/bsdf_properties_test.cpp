@@ -263,5 +263,60 @@ TEST(Blend, ABlendOfBlendsIsOneFlatSum) {
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(nested.f(wo, wi)[k], expected[k], 1e-6f);
 }
 
+TEST(Principled, AllMetalIsSchlicksConductorOfTheBaseColour) {
+    PrincipledParameters p;
+    p.base = Color(0.9f, 0.6f, 0.3f);
+    p.metallic = 1.0f;
+    p.roughness = 0.5f;
+    const Bsdf metal = Bsdf::principled(p);
+    const MicrofacetDistribution ggx(0.25f, 0.25f, {MicrofacetType::Ggx, MicrofacetMasking::Separable});
+    const Vec3 wo = direction(30.0f, 10.0f), wi = direction(50.0f, 200.0f);
+    const Vec3 h = glm::normalize(wo + wi);
+    const Color expected = fresnelSchlick(p.base, glm::dot(wo, h)) *
+                           (ggx.d(h) * ggx.g(wo, wi) / (4.0f * wo.z * wi.z));
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(metal.f(wo, wi)[c], expected[c], 1e-5f * expected[c]);
+    EXPECT_TRUE(metal.isOpaque());
+    EXPECT_EQ(metal.f(wo, -wi), Color(0.0f));  // nothing passes an opaque surface
+}
+
+TEST(Principled, ThinDiffuseTransmissionSplitsTheLambertLobe) {
+    PrincipledParameters p;
+    p.base = Color(0.8f, 0.5f, 0.2f);
+    p.thin = true;
+    p.diffuseTransmission = 2.0f;  // all of the diffuse lobe passes through
+    const Bsdf sheet = Bsdf::principled(p);
+    const Vec3 wo = direction(40.0f, 30.0f), below = -direction(25.0f, 100.0f);
+    const Color through = sheet.f(wo, below);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(through[c], p.base[c] * kInvPi, 1e-6f);
+    EXPECT_EQ(sheet.f(wo, direction(25.0f, 100.0f)), Color(0.0f));
+    // The same from the other side.
+    EXPECT_EQ(sheet.f(-wo, -below), through);
+    EXPECT_FALSE(sheet.isOpaque());
+}
+
+TEST(Principled, ATransmissiveSolidOnlyRefractsAndReflectsFromInside) {
+    PrincipledParameters p;
+    p.base = Color(0.5f);
+    p.transmission = 1.0f;
+    p.roughness = 0.3f;
+    p.sheen = 1.0f;
+    p.clearcoat = 1.0f;
+    const Bsdf glass = Bsdf::principled(p);
+    EXPECT_FALSE(glass.isOpaque());
+    // From inside, reflection is the dielectric's alone: the same with or
+    // without the front-only lobes.
+    PrincipledParameters plain = p;
+    plain.sheen = plain.clearcoat = 0.0f;
+    const Vec3 wo = -direction(20.0f, 0.0f), wi = -direction(35.0f, 180.0f);
+    EXPECT_EQ(glass.f(wo, wi), Bsdf::principled(plain).f(wo, wi));
+    EXPECT_GT(glass.f(wo, direction(10.0f, 180.0f)).r, 0.0f);  // refraction out
+    EXPECT_THROW(Bsdf::principled([] {
+                     PrincipledParameters q;
+                     q.eta = 1.0f;
+                     return q;
+                 }()),
+                 Error);
+}
+
 }  // namespace
 }  // namespace strahl

@@ -22,6 +22,26 @@ struct Case {
     Bsdf bsdf;
 };
 
+// A principled BSDF with every lobe on (anisotropic, tinted, metallic,
+// clearcoated, sheened, flattened), transmitting `transmission`, or thin.
+PrincipledParameters principledCase(bool thin, float transmission) {
+    PrincipledParameters p;
+    p.base = Color(0.7f, 0.4f, 0.2f);
+    p.roughness = 0.4f;
+    p.anisotropic = 0.5f;
+    p.metallic = thin ? 0.0f : 0.3f;
+    p.specularTint = 0.4f;
+    p.sheen = 0.5f;
+    p.sheenTint = 0.5f;
+    p.clearcoat = thin ? 0.0f : 0.8f;
+    p.clearcoatGloss = 0.3f;
+    p.transmission = transmission;
+    p.flatness = 0.3f;
+    p.thin = thin;
+    p.diffuseTransmission = thin ? 0.8f : 0.0f;
+    return p;
+}
+
 // Every model with a non-delta lobe, at moderate parameters.
 std::vector<Case> nonDeltaModels() {
     const MetalPreset gold = *findMetalPreset("gold");
@@ -44,6 +64,9 @@ std::vector<Case> nonDeltaModels() {
         {"smooth plastic", Bsdf::plastic(Color(0.6f, 0.3f, 0.1f), 1.5f, 0.0f)},
         {"metallic-roughness", Bsdf::metallicRoughness(Color(0.9f, 0.6f, 0.3f), 0.5f, 0.4f)},
         {"smooth metallic-roughness", Bsdf::metallicRoughness(Color(0.9f, 0.6f, 0.3f), 0.3f, 0.0f)},
+        {"principled, opaque", Bsdf::principled(principledCase(false, 0.0f))},
+        {"principled, transmissive", Bsdf::principled(principledCase(false, 0.6f))},
+        {"principled, thin", Bsdf::principled(principledCase(true, 0.5f))},
         {"blend of rough gold and lambert",
          Bsdf::blend(Bsdf::conductor(gold.eta, gold.k, 0.2f, 0.2f), Bsdf::diffuse(Color(0.7f)), 0.4f)},
         {"blend of smooth glass and rough plastic",

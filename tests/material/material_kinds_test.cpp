@@ -17,7 +17,7 @@ TEST(MaterialKinds, NamesFollowTheVariantOrder) {
     const auto names = kindNames<MaterialKind>();
     const std::vector<std::string_view> expected = {
         "diffuse",         "phong",   "blinn",              "conductor", "dielectric",
-        "thin_dielectric", "plastic", "metallic_roughness", "blend",     "emissive"};
+        "thin_dielectric", "plastic", "metallic_roughness", "principled", "blend", "emissive"};
     EXPECT_EQ(std::vector<std::string_view>(names.begin(), names.end()), expected);
 }
 
@@ -54,7 +54,7 @@ TEST(MaterialKinds, ForEachTextureVisitsTheKindsTexturesThenOpacityEmissionNorma
         {DiffuseMaterial{}, 1},    {PhongMaterial{}, 1},     {BlinnMaterial{}, 1},
         {ConductorMaterial{}, 2},  {DielectricMaterial{}, 2}, {ThinDielectricMaterial{}, 1},
         {PlasticMaterial{}, 2},
-        {MetallicRoughnessMaterial{}, 3}, {blendOfPlasticAndDiffuse(), 2 + 1 + 1},
+        {MetallicRoughnessMaterial{}, 3}, {PrincipledMaterial{}, 12}, {blendOfPlasticAndDiffuse(), 2 + 1 + 1},
         {EmissiveMaterial{}, 0}};
     for (const auto& [kind, own] : cases) {
         Material m;

@@ -217,7 +217,7 @@ TEST(MitsubaImport, AMaskIsTheOpacityOfItsNestedBsdf) {
     const SceneDesc half = parse(scene(R"(<shape type="cube"><bsdf type="mask"><bsdf type="diffuse"/></bsdf></shape>)"));
     EXPECT_EQ(half.materials[1].material.opacity.value, 0.5f);
     EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="mask"><rgb name="opacity" value="0.1, 0.2, 0.3"/><bsdf type="diffuse"/></bsdf></shape>)")),
-                HasSubstr("the opacity must be one number or a texture"));
+                HasSubstr("'opacity' must be one number or a texture"));
 }
 
 TEST(MitsubaImport, ABlendbsdfIsABlendOfItsTwoBsdfsWeightedByANumberOrAMeshAttribute) {
@@ -244,6 +244,36 @@ TEST(MitsubaImport, ABlendbsdfIsABlendOfItsTwoBsdfsWeightedByANumberOrAMeshAttri
     EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="blendbsdf"><float name="weight" value="0.5"/>
         <bsdf type="diffuse"/><bsdf type="mask"><bsdf type="diffuse"/></bsdf></bsdf></shape>)")),
                 HasSubstr(R"(<bsdf type="mask">: a normalmap, bumpmap, mask or null BSDF inside a blendbsdf is not supported)"));
+}
+
+TEST(MitsubaImport, PrincipledBsdfsKeepTheirParametersUnderStrahlsNames) {
+    const auto solid = cubeMaterial<PrincipledMaterial>(R"(<bsdf type="principled">
+        <rgb name="base_color" value="0.2, 0.8, 0.1"/><float name="roughness" value="0.15"/>
+        <float name="spec_trans" value="0.3"/><float name="specular" value="0.7"/>
+        <texture name="metallic" type="checkerboard"><float name="color0" value="0.7"/>
+        <float name="color1" value="0.1"/></texture></bsdf>)");
+    EXPECT_EQ(solid.color.value, Color(0.2f, 0.8f, 0.1f));
+    EXPECT_EQ(solid.roughness.value, 0.15f);
+    EXPECT_EQ(solid.transmission.value, 0.3f);
+    EXPECT_NEAR(solid.eta, PrincipledMaterial::etaOfSpecular(0.7f), 1e-6f);
+    EXPECT_FALSE(solid.thin);
+    // Mitsuba reads a checkerboard as a number with its colours exchanged.
+    ASSERT_TRUE(solid.metallic.checkerboard.has_value());
+    EXPECT_EQ(solid.metallic.checkerboard->color0, Color(0.1f));
+    EXPECT_EQ(solid.metallic.checkerboard->color1, Color(0.7f));
+
+    const auto thin = cubeMaterial<PrincipledMaterial>(R"(<bsdf type="principledthin">
+        <float name="diff_trans" value="1.4"/><float name="eta" value="1.33"/></bsdf>)");
+    EXPECT_TRUE(thin.thin);
+    EXPECT_EQ(thin.diffuseTransmission.value, 1.4f);
+    EXPECT_EQ(thin.eta, 1.33f);
+
+    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="principledthin"><float name="metallic" value="0.5"/></bsdf></shape>)")),
+                HasSubstr("the parameter 'metallic' is not supported"));
+    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="principled"><rgb name="sheen" value="0.1, 0.2, 0.3"/></bsdf></shape>)")),
+                HasSubstr("'sheen' must be one number or a texture"));
+    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="principled"><texture name="sheeen" type="checkerboard"/></bsdf></shape>)")),
+                HasSubstr("not a parameter of principled"));
 }
 
 TEST(MitsubaImport, ANullBsdfIsAnInvisibleSurfaceButNoInvisibleLight) {

@@ -62,7 +62,7 @@ const std::string kNotAnImage = "this is a text file, not an image\n";
 TEST(ShadingInput, UnknownMaterialTypeListsTheTypes) {
     EXPECT_EQ(materialError(R"({"name": "m", "type": "velvet"})"),
               "scene.json: /materials/0/type: must be one of diffuse, phong, blinn, conductor, "
-              "dielectric, thin_dielectric, plastic, metallic_roughness, blend, emissive, got 'velvet'");
+              "dielectric, thin_dielectric, plastic, metallic_roughness, principled, blend, emissive, got 'velvet'");
 }
 
 TEST(ShadingInput, KeyOfAnotherTypeListsTheAllowedKeys) {
@@ -150,6 +150,29 @@ TEST(ShadingInput, BlendKeys) {
     EXPECT_TRUE(std::holds_alternative<ConductorMaterial>(blend.parts[0]->kind));
     const auto& inner = std::get<BlendMaterial>(blend.parts[1]->kind);
     EXPECT_EQ(std::get<DiffuseMaterial>(inner.parts[1]->kind).color.value, Color(0.1f));
+}
+
+TEST(ShadingInput, PrincipledKeys) {
+    EXPECT_EQ(materialError(R"({"name": "m", "type": "principled", "specular": 0.5, "ior": 1.5})"),
+              "scene.json: /materials/0: give either 'specular' or 'ior', not both");
+    EXPECT_EQ(materialError(R"({"name": "m", "type": "principled", "thin": true, "clearcoat": 0.5})"),
+              "scene.json: /materials/0: 'clearcoat' does not apply to a thin principled material");
+    EXPECT_EQ(materialError(R"({"name": "m", "type": "principled", "diffuse_transmission": 1})"),
+              "scene.json: /materials/0: 'diffuse_transmission' applies to a thin principled "
+              "material only (\"thin\": true)");
+    EXPECT_EQ(materialError(R"({"name": "m", "type": "principled", "sheen": {"checkerboard":
+                  {"color0": [1, 0, 0], "color1": 0}}})"),
+              "scene.json: /materials/0/sheen/checkerboard/color0: a scalar checkerboard takes "
+              "numbers, got array");
+    const SceneDesc ok = parseSceneText(
+        R"({"materials": [{"name": "m", "type": "principled", "specular": 0.5, "metallic":
+            {"checkerboard": {"color0": 0.7, "color1": 0.1, "scale": 25}}}], )" + kTriangle + "}",
+        "scene.json");
+    const auto& principled = std::get<PrincipledMaterial>(ok.materials.at(0).material.kind);
+    EXPECT_NEAR(principled.eta, 1.5f, 1e-6f);  // Mitsuba's specular 0.5 is eta 1.5
+    ASSERT_TRUE(principled.metallic.checkerboard.has_value());
+    EXPECT_EQ(principled.metallic.checkerboard->color1, Color(0.1f));
+    EXPECT_TRUE(principled.metallic.varies());
 }
 
 TEST(ShadingInput, BumpMapKeys) {

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "strahl/bsdf/bsdf_models.h"
+#include "strahl/bsdf/principled.h"
 #include "strahl/core/math.h"
 
 namespace strahl {
@@ -81,6 +82,9 @@ public:
     // alpha are clamped to [0, 1].
     static Bsdf metallicRoughness(const Color& base, float metallic, float alpha,
                                   float eta = 1.5f);
+    // Burley's principled BSDF as Mitsuba 3 defines it (principled.h);
+    // parameters are clamped to their ranges, NaN is refused.
+    static Bsdf principled(const PrincipledParameters& parameters);
     // (1 - weight) a + weight b (Mitsuba's blendbsdf, pbrt's mix): f and pdf
     // are the weighted sums, a sample picks a or b with probability 1 - weight
     // or weight. weight is clamped to [0, 1]; at 0 or 1 the result is a or b.

@@ -5,16 +5,22 @@
 // them in a std::variant (BsdfModel below) built by its factories, which
 // validate the parameters; use the models directly only in tests.
 //
-// Opaque models (all but DielectricModel) see wo in the upper hemisphere only
-// (Bsdf mirrors the lower one onto it) and return 0 / nullopt for wi below.
+// Opaque models (kOpaque, or opaque() where it varies with the parameters)
+// see wo in the upper hemisphere only (Bsdf mirrors the lower one onto it) and
+// return 0 / nullopt for wi below; the others see both sides as they are.
 // Derivations and references: docs/materials.md.
 
+#include <memory>
 #include <optional>
 #include <variant>
 
 #include "strahl/bsdf/bsdf_sample.h"
 #include "strahl/bsdf/microfacet.h"
 #include "strahl/bsdf/rough_coat.h"
+
+namespace strahl {
+struct PrincipledLobes;  // principled.h
+}  // namespace strahl
 
 namespace strahl::bsdf_models {
 
@@ -147,6 +153,29 @@ struct MetallicRoughnessModel {
     std::optional<BsdfSample> sample(const Vec3& wo, float uLobe, const Vec2& u) const;
 };
 
+// Burley's principled BSDF as Mitsuba 3 defines it ("principled" and
+// "principledthin"; docs/materials.md, "Principled"): a GGX specular lobe
+// whose Fresnel term blends the dielectric, a metal of the base colour and a
+// tinted dielectric, a rough transmission through it (or, thin, a straight
+// rough transmission), a GTR1 clearcoat, Burley's diffuse with retro-
+// reflection, flatness and sheen, and (thin) a Lambertian transmission.
+struct PrincipledModel {
+    // On the heap: the model has about twenty parameters, and every other
+    // BSDF (kept in the same variant, built at each path vertex) would pay
+    // for their size.
+    std::shared_ptr<const PrincipledLobes> lobes;
+
+    // A solid principled material that transmits nothing is opaque (two-sided
+    // as strahl's opaque models are); with transmission, or thin, the model
+    // sees both sides: the back of a solid one only reflects and refracts
+    // through its specular lobe, a thin one is the same from either side.
+    bool opaque() const;
+    bool specular() const { return false; }
+    Color f(const Vec3& wo, const Vec3& wi) const;
+    float pdf(const Vec3& wo, const Vec3& wi) const;
+    std::optional<BsdfSample> sample(const Vec3& wo, float uLobe, const Vec2& u) const;
+};
+
 }  // namespace strahl::bsdf_models
 
 namespace strahl {
@@ -156,6 +185,6 @@ using BsdfModel =
     std::variant<bsdf_models::BlackModel, bsdf_models::LambertModel, bsdf_models::PhongModel,
                  bsdf_models::ConductorModel, bsdf_models::DielectricModel,
                  bsdf_models::ThinDielectricModel, bsdf_models::PlasticModel,
-                 bsdf_models::MetallicRoughnessModel>;
+                 bsdf_models::MetallicRoughnessModel, bsdf_models::PrincipledModel>;
 
 }  // namespace strahl

@@ -2,8 +2,9 @@
 // Materials: what the scene file and mesh files describe, with textures bound,
 // turned into a BSDF at each shading point (bsdf/bsdf.h has the models).
 // A material is one kind from material_kinds.h (diffuse, phong, blinn,
-// conductor, dielectric, plastic, metallic_roughness, emissive) plus what every
-// kind may have: an emission, a normal map and a texture mapping. Keys,
+// conductor, dielectric, thin_dielectric, plastic, metallic_roughness,
+// principled, blend, emissive) plus what every kind may have: an emission, a
+// normal or bump map, an opacity and a texture mapping. Keys,
 // defaults and the mapping from OBJ/glTF materials: docs/materials.md.
 
 #include <string>

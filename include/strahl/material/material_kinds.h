@@ -17,6 +17,7 @@
 #include "strahl/material/metallic_roughness.h"
 #include "strahl/material/phong.h"
 #include "strahl/material/plastic.h"
+#include "strahl/material/principled.h"
 #include "strahl/material/thin_dielectric.h"
 
 namespace strahl {
@@ -24,7 +25,7 @@ namespace strahl {
 using MaterialKind =
     std::variant<DiffuseMaterial, PhongMaterial, BlinnMaterial, ConductorMaterial,
                  DielectricMaterial, ThinDielectricMaterial, PlasticMaterial,
-                 MetallicRoughnessMaterial, BlendMaterial, EmissiveMaterial>;
+                 MetallicRoughnessMaterial, PrincipledMaterial, BlendMaterial, EmissiveMaterial>;
 
 // A material kind held by pointer (BlendMaterial's parts).
 struct MaterialKindBox {

@@ -62,7 +62,7 @@ struct PlasticMaterial {
         roughCoat = nullptr;
         if (!microfacetCoat) return;  // the fresnel coat needs no tables
         std::vector<float> alphas;
-        if (!roughness.texture.varies()) {
+        if (!roughness.varies()) {
             const float alpha = Bsdf::roughnessToAlpha(roughness.value);
             if (alpha >= MicrofacetDistribution::kSmoothAlpha) alphas.push_back(alpha);
         } else {

@@ -52,11 +52,16 @@ struct TexturedColor {
 };
 
 // A scalar, optionally multiplied by one channel of a texture (an image's or
-// a mesh attribute's).
+// a mesh attribute's) or by a checkerboard of numbers.
 struct TexturedFloat {
     float value = 0.0f;
     TextureRef texture;
     int channel = 0;  // 0 R, 1 G, 2 B, 3 A
+    // Exclusive with texture: a checkerboard of two numbers (its colours grey).
+    std::optional<Checkerboard> checkerboard = std::nullopt;
+
+    // Whether the value varies over the surface.
+    bool varies() const { return texture.varies() || checkerboard.has_value(); }
 };
 
 // How a texture is placed on the surface.
