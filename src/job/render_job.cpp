@@ -54,9 +54,11 @@ std::vector<fs::path> outputFiles(const RenderJob& job, const SceneDesc& desc) {
     return outputs;
 }
 
+// --crop or --region, else the scene's film.crop (checked against the film
+// when the scene was parsed, after --width and --height), else the whole film.
 PixelRect cropWindow(const RenderJob& job, const SceneDesc& desc) {
     const PixelRect full{0, 0, desc.film.width, desc.film.height};
-    if (!job.crop) return full;
+    if (!job.crop) return desc.film.crop.value_or(full);
     const PixelRect& c = *job.crop;
     if (c.x1 > full.x1 || c.y1 > full.y1)
         fail(job.cropOrigin, " exceeds the ", full.x1, "x", full.y1,

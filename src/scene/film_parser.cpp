@@ -22,7 +22,7 @@ constexpr int64_t kMaxSpp = 65536;
 }  // namespace
 
 FilmDesc parseFilm(const JsonValue& v, const fs::path& folder) {
-    v.requireKeys({"width", "height", "outputs", "aovs", "exr_float", "filter"});
+    v.requireKeys({"width", "height", "outputs", "aovs", "exr_float", "filter", "crop"});
     FilmDesc f;
     if (auto width = v.find("width")) f.width = static_cast<int>(width->integer(1, kMaxFilmSide));
     if (auto height = v.find("height"))
@@ -50,6 +50,16 @@ FilmDesc parseFilm(const JsonValue& v, const fs::path& folder) {
                 aov.fail("'", name, "' is listed twice");
             f.aovs.push_back(kind);
         }
+    }
+    if (auto crop = v.find("crop")) {
+        // [x0, y0, x1, y1]: pixels x0 <= x < x1, y0 <= y < y1, y = 0 at the top.
+        if (!crop->raw().is_array() || crop->size() != 4)
+            crop->fail("expected [x0, y0, x1, y1], four integers, got ", crop->describe());
+        const int x0 = static_cast<int>(crop->at(0).integer(0, f.width - 1));
+        const int y0 = static_cast<int>(crop->at(1).integer(0, f.height - 1));
+        const int x1 = static_cast<int>(crop->at(2).integer(x0 + 1, f.width));
+        const int y1 = static_cast<int>(crop->at(3).integer(y0 + 1, f.height));
+        f.crop = PixelRect{x0, y0, x1, y1};
     }
     if (auto exrFloat = v.find("exr_float")) f.exrFloat = exrFloat->boolean();
     if (auto filter = v.find("filter")) {

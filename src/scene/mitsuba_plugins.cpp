@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <map>
+#include <array>
 #include <set>
 #include <span>
 
@@ -660,6 +661,7 @@ private:
                 unsupported(*c.object, "not supported inside a <shape>");
         const bool flip = boolean(s, "flip_normals", false);
         const glm::dmat4 toWorld = transform(s, "to_world");
+        glm::dmat4 localToWorld(1.0);  // the shape's own placement, before to_world
         json shape;
         if (s.type == "obj" || s.type == "ply") {
             allowOnly(s, {"filename", "to_world", "face_normals", "flip_normals"});
@@ -694,16 +696,37 @@ private:
             shape = cube();
         } else if (s.type == "sphere") {
             allowOnly(s, {"to_world", "center", "radius", "flip_normals"});
-            if (emitter) unsupported(s, "an emitting sphere is not supported yet (use a mesh)");
             if (flip) unsupported(s, "flip_normals on a sphere is not supported yet (use a mesh)");
             const glm::dvec3 center = vec(s, "center", glm::dvec3(0.0));
             const double radius = number(s, "radius", 1.0);
-            const glm::dmat4 m = toWorld * glm::dmat4(glm::dvec4(radius, 0, 0, 0),
-                                                      glm::dvec4(0, radius, 0, 0),
-                                                      glm::dvec4(0, 0, radius, 0),
-                                                      glm::dvec4(center, 1.0));
-            shape = {{"type", "implicit"}, {"surface", {{"type", "sphere"}, {"radius", 1}}}};
-            shape["transform"] = matrixOp(m);
+            if (!(radius > 0.0)) fail(s.property("radius")->place.text(), ": radius must be positive");
+            localToWorld = glm::dmat4(glm::dvec4(radius, 0, 0, 0), glm::dvec4(0, radius, 0, 0),
+                                      glm::dvec4(0, 0, radius, 0), glm::dvec4(center, 1.0));
+            // Exact as an implicit surface; an emitter becomes a fine mesh,
+            // which next-event estimation samples (analytic shapes it cannot).
+            shape = emitter ? analyticMesh({{"type", "sphere"}, {"radius", 1}}, {128, 256})
+                            : json{{"type", "implicit"}, {"surface", {{"type", "sphere"}, {"radius", 1}}}};
+        } else if (s.type == "disk") {
+            allowOnly(s, {"to_world", "flip_normals"});
+            // The unit disk in z = 0 facing +z: the profile from r = 1 in to
+            // the centre turns about z with the normal up.
+            shape = analyticMesh({{"type", "revolution"}, {"profile", {{1, 0}, {0, 0}}}}, {256, 1});
+        } else if (s.type == "cylinder") {
+            allowOnly(s, {"to_world", "p0", "p1", "radius", "flip_normals"});
+            const glm::dvec3 p0 = vec(s, "p0", glm::dvec3(0.0)), p1 = vec(s, "p1", glm::dvec3(0, 0, 1));
+            const double radius = number(s, "radius", 1.0), length = glm::length(p1 - p0);
+            if (!(radius > 0.0)) fail(s.property("radius")->place.text(), ": radius must be positive");
+            if (!(length > 0.0)) unsupported(s, "p0 and p1 must differ");
+            // The open tube of the radius around z from 0 to the length,
+            // turned onto p0 -> p1.
+            const glm::dvec3 z = (p1 - p0) / length;
+            const glm::dvec3 x = glm::normalize(std::abs(z.x) < 0.9 ? glm::cross(glm::dvec3(1, 0, 0), z)
+                                                                    : glm::cross(glm::dvec3(0, 1, 0), z));
+            localToWorld = glm::dmat4(glm::dvec4(x, 0), glm::dvec4(glm::cross(z, x), 0), glm::dvec4(z, 0),
+                                      glm::dvec4(p0, 1));
+            const json surface = {{"type", "cylinder"}, {"radius", radius}, {"z_min", 0}, {"z_max", length}};
+            shape = emitter ? analyticMesh(surface, {256, 1})
+                            : json{{"type", "parametric"}, {"mode", "direct"}, {"surface", surface}};
         } else if (s.type == "instance") {
             allowOnly(s, {"to_world"});
             const Child* group = child(s, "shape");
@@ -716,13 +739,46 @@ private:
         } else {
             unsupported(s, "this shape is not supported yet (docs/mitsuba.md lists those that are)");
         }
-        if (s.type != "sphere") shape["transform"] = matrixOp(toWorld);
+        shape["transform"] = matrixOp(toWorld * localToWorld);
         if (flip) shape["flip_normals"] = true;  // the meshes: winding and normals turned
         if (s.type != "instance")
             shape["material"] = material(bsdf ? bsdf->object.get() : nullptr,
                                          emitter ? emitter->object.get() : nullptr);
+        // The analytic shapes' (u, v) are not Mitsuba's uv: no textures on them.
+        const bool analytic = s.type == "sphere" || s.type == "disk" || s.type == "cylinder";
+        if (analytic && shape.contains("material") && usesTextures(materialNamed(shape["material"])))
+            unsupported(s, "a textured material on a Mitsuba " + s.type +
+                               " is not supported (its uv is not Mitsuba's; use a mesh)");
         shape["name"] = s.id.empty() ? s.type + "@" + where(s) : s.id;
         into.push_back(shape);
+    }
+
+    // A parametric surface tessellated into a fixed grid of segments (along
+    // its u and v): a mesh, so that next-event estimation finds it as a light.
+    static json analyticMesh(const json& surface, std::array<int, 2> segments) {
+        return {{"type", "parametric"},
+                {"surface", surface},
+                {"tessellation", {{"segments", {segments[0], segments[1]}}}}};
+    }
+
+    const json& materialNamed(const std::string& name) const {
+        for (const json& m : materials_)
+            if (m["name"] == name) return m;
+        fail("internal: no material '", name, "' was made");
+    }
+
+    // Whether a material JSON reads any texture, checkerboard or attribute.
+    static bool usesTextures(const json& value) {
+        if (value.is_object()) {
+            if (value.contains("texture") || value.contains("checkerboard") || value.contains("attribute"))
+                return true;
+            for (const auto& item : value.items())
+                if (usesTextures(item.value())) return true;
+        } else if (value.is_array()) {
+            for (const json& item : value)
+                if (usesTextures(item)) return true;
+        }
+        return false;
     }
 
     std::string shapegroup(const Object& g) {
@@ -974,10 +1030,9 @@ private:
 
     void film(const Object& f, int width, int height) {
         if (f.type != "hdrfilm") unsupported(f, "only hdrfilm is supported");
-        allowOnly(f, {"width", "height", "component_format"},
+        allowOnly(f, {"width", "height", "component_format", "crop_offset_x", "crop_offset_y",
+                      "crop_width", "crop_height"},
                   {"pixel_format", "file_format", "banner", "sample_border"});
-        for (const char* crop : {"crop_offset_x", "crop_offset_y", "crop_width", "crop_height"})
-            if (f.property(crop)) unsupported(f, "a film crop is not supported in the scene: use --crop");
         json filter = {{"type", "gaussian"}, {"radius", 2.0}};  // Mitsuba's default: σ 0.5, 4σ
         if (const Child* rfilter = child(f, "rfilter")) {
             const Object& r = *rfilter->object;
@@ -999,6 +1054,15 @@ private:
                         {"height", height},
                         {"filter", filter},
                         {"exr_float", text(f, "component_format", "float16") == "float32"}};
+        // Mitsuba's crop window (the rest of the film is not rendered).
+        const int x0 = integer(f, "crop_offset_x", 0), y0 = integer(f, "crop_offset_y", 0);
+        const int cw = integer(f, "crop_width", width - x0), ch = integer(f, "crop_height", height - y0);
+        if (x0 < 0 || y0 < 0 || cw < 1 || ch < 1 || x0 + cw > width || y0 + ch > height)
+            unsupported(f, "the crop window (offset " + std::to_string(x0) + ", " + std::to_string(y0) +
+                               ", size " + std::to_string(cw) + " x " + std::to_string(ch) +
+                               ") must lie inside the film");
+        if (x0 != 0 || y0 != 0 || cw != width || ch != height)
+            doc_["film"]["crop"] = {x0, y0, x0 + cw, y0 + ch};
     }
 
     void sampler(const Object& s) {

@@ -252,6 +252,22 @@ TEST(FarmRegion, RegionIsTheCropWindowOfTheFullImage) {
     expectIdentical(region, readExr(dir / "crop.exr"));
 }
 
+TEST(FarmRegion, TheScenesFilmCropIsTheCropUnlessTheCommandLineGivesOne) {
+    const fs::path dir = test::scratchDir("farm-film-crop");
+    const std::string sceneCrop = " --set /film/crop=[8,4,40,20]";
+    ASSERT_EQ(render(sceneCrop + " -o " + (dir / "scene.exr").string()).status, 0);
+    ASSERT_EQ(render("--crop 8,4,40,20 -o " + (dir / "cli.exr").string()).status, 0);
+    expectIdentical(readExr(dir / "scene.exr"), readExr(dir / "cli.exr"));
+    // --region overrides it.
+    ASSERT_EQ(render(sceneCrop + " --region 0 0 8 8 -o " + (dir / "region.exr").string()).status, 0);
+    EXPECT_EQ(readExr(dir / "region.exr").width, 8);
+    // A film made smaller than the scene's crop from the command line: the
+    // crop is checked against the size the command line gives.
+    expectError(runStrahl("render " + kScene + " --height 36 --spp 4 --width 30" + sceneCrop +
+                          " -o " + (dir / "small.exr").string()),
+                1, "/film/crop/2: must be between 9 and 30, got 40", dir, 3);
+}
+
 // ---------------------------------------------------------------- assemble
 
 // Three regions that tile the 48 x 36 image; names as in the farm docs.

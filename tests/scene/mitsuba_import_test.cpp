@@ -12,6 +12,8 @@
 #include <string>
 
 #include "strahl/integrator/environment_light.h"
+#include "strahl/integrator/surface_hit.h"
+#include "strahl/integrator/world.h"
 #include "strahl/integrator/projector_light.h"
 #include "strahl/integrator/spot_light.h"
 #include "strahl/material/conductor.h"
@@ -274,6 +276,67 @@ TEST(MitsubaImport, PrincipledBsdfsKeepTheirParametersUnderStrahlsNames) {
                 HasSubstr("'sheen' must be one number or a texture"));
     EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="principled"><texture name="sheeen" type="checkerboard"/></bsdf></shape>)")),
                 HasSubstr("not a parameter of principled"));
+}
+
+// Whether a ray from `origin` along `dir` hits anything, and at what distance.
+float hitDistance(const World& world, Vec3 origin, Vec3 dir) {
+    Ray ray;
+    ray.origin = origin;
+    ray.dir = dir;
+    const Hit hit = world.accel->intersect(ray);
+    return hit.valid() ? hit.t : -1.0f;
+}
+
+TEST(MitsubaImport, DisksCylindersAndEmittingSpheresAreMeshesOrExactSurfaces) {
+    // The rectangle of scene() is at z = 0 in [-1, 1]²: these shapes sit above it.
+    const World world = buildWorld(parse(scene(R"(
+        <shape type="disk"><transform name="to_world"><scale value="0.5"/><translate z="2"/></transform></shape>
+        <shape type="cylinder"><point name="p0" x="3" y="0" z="0"/><point name="p1" x="3" y="0" z="2"/>
+            <float name="radius" value="0.5"/></shape>
+        <shape type="sphere"><point name="center" x="-3" y="0" z="1"/><float name="radius" value="0.5"/>
+            <emitter type="area"><rgb name="radiance" value="2"/></emitter></shape>)")), {});
+    // The disk (radius 0.5 at z = 2), through its polygonal rim's error.
+    EXPECT_NEAR(hitDistance(world, Vec3(0.3f, 0, 5), Vec3(0, 0, -1)), 3.0f, 1e-5f);
+    EXPECT_NEAR(hitDistance(world, Vec3(0.51f, 0, 5), Vec3(0, 0, -1)), 5.0f, 1e-5f);  // the rectangle below
+    {
+        // Its front (the side a one-sided emitter lights) faces +z, as Mitsuba's.
+        Ray ray;
+        ray.origin = Vec3(0.2f, 0.1f, 5);
+        ray.dir = Vec3(0, 0, -1);
+        const Hit hit = world.accel->intersect(ray);
+        const SurfaceHit surface(world, ray, hit);
+        EXPECT_GT(surface.interaction().Ng.z, 0.99f);
+    }
+    // The open tube from (3, 0, 0) to (3, 0, 2), exact: x = 3.5 from outside.
+    EXPECT_NEAR(hitDistance(world, Vec3(6, 0, 1), Vec3(-1, 0, 0)), 2.5f, 1e-5f);
+    // The emitting sphere is a mesh within 10^-4 of the radius, and a light.
+    EXPECT_NEAR(hitDistance(world, Vec3(-3, 0, 5), Vec3(0, 0, -1)), 3.5f, 1e-4f);
+    EXPECT_GT(world.lightSet.lights().size(), 1000u);
+
+    const SceneDesc d = parse(scene(R"(<shape type="disk"/>)"));
+    EXPECT_EQ(d.shapes.back().kind, ShapeKind::Parametric);
+    EXPECT_THAT(errorOf(scene(R"(<shape type="cylinder"><point name="p1" x="0" y="0" z="0"/></shape>)")),
+                HasSubstr("p0 and p1 must differ"));
+    EXPECT_THAT(errorOf(scene(R"(<shape type="disk"><bsdf type="diffuse"><texture name="reflectance" type="checkerboard"/></bsdf></shape>)")),
+                HasSubstr("a textured material on a Mitsuba disk is not supported"));
+}
+
+TEST(MitsubaImport, AFilmCropIsTheScenesCrop) {
+    std::string text = scene("");
+    const std::string film = R"(<integer name="height" value="32"/>)";
+    text.replace(text.find(film), film.size(),
+                 film + R"(<integer name="crop_offset_x" value="8"/><integer name="crop_offset_y" value="4"/>
+                           <integer name="crop_width" value="16"/>)");
+    const SceneDesc d = parse(text);
+    ASSERT_TRUE(d.film.crop.has_value());
+    EXPECT_EQ(d.film.crop->x0, 8);
+    EXPECT_EQ(d.film.crop->y0, 4);
+    EXPECT_EQ(d.film.crop->x1, 24);
+    EXPECT_EQ(d.film.crop->y1, 32);  // the rest of the film's height
+    std::string outside = scene("");
+    outside.replace(outside.find(film), film.size(), film + R"(<integer name="crop_width" value="65"/>)");
+    EXPECT_THAT(errorOf(outside), HasSubstr("must lie inside the film"));
+    EXPECT_FALSE(parse(scene("")).film.crop.has_value());
 }
 
 TEST(MitsubaImport, ANullBsdfIsAnInvisibleSurfaceButNoInvisibleLight) {

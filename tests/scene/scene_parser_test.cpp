@@ -415,7 +415,7 @@ TEST(SceneParser, UnknownKeysNameTheObjectAndTheAllowedKeys) {
               "focal_distance, fov, window, aperture_radius, focus_distance)");
     EXPECT_EQ(errorWith(R"("film": {"widht": 30})"),
               "scene.json: /film: unknown key 'widht' (allowed: width, height, outputs, aovs, "
-              "exr_float, filter)");
+              "exr_float, filter, crop)");
     EXPECT_EQ(errorWith(R"("render": {"samples": 4})"),
               "scene.json: /render: unknown key 'samples' (allowed: integrator, spp, seed, "
               "max_depth, russian_roulette, russian_roulette_depth, ao_distance, ao_samples, "

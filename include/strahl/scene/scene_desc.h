@@ -16,6 +16,7 @@
 
 #include "strahl/camera/camera.h"
 #include "strahl/core/math.h"
+#include "strahl/core/pixel_rect.h"
 #include "strahl/film/film.h"
 #include "strahl/geometry/implicit_shape.h"
 #include "strahl/geometry/parametric_shape.h"
@@ -78,6 +79,8 @@ struct FilmDesc {
     bool exrFloat = false;
     std::string filter = "box";           // PixelFilter::names()
     std::optional<float> filterRadius;    // default: the filter's own
+    // The pixels to render (as --crop, which overrides it); the whole film without.
+    std::optional<PixelRect> crop;
 };
 
 struct RenderDesc {
