@@ -142,6 +142,7 @@ Material buildMaterial(const MaterialDesc& desc, const SceneDesc& scene, World& 
     mat.name = desc.name;
     const std::string where = scene.file.filename().string() + ": " + desc.where;
     mat.forEachTexture([&](TextureRef& texture, TextureEncoding encoding) {
+        if (texture.raw) encoding = *texture.raw ? TextureEncoding::Data : TextureEncoding::Color;
         texture.handle = addTexture(world, texture.file, encoding, where);
     });
     return mat;

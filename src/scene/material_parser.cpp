@@ -61,7 +61,7 @@ void parseMeshAttribute(const JsonValue& v, std::initializer_list<std::string_vi
 }
 
 // A colour given as a number, [r, g, b], {"texture": file, "scale": colour,
-// sampling keys}, {"attribute": name, "scale": colour} or {"checkerboard":
+// "raw": false, sampling keys}, {"attribute": name, "scale": colour} or {"checkerboard":
 // {...}, "scale": colour}.
 void parseTexturedColor(const JsonValue& v, const fs::path& folder, TexturedColor& out) {
     if (v.raw().is_object() && v.has("attribute")) {
@@ -71,11 +71,12 @@ void parseTexturedColor(const JsonValue& v, const fs::path& folder, TexturedColo
         return;
     }
     if (v.raw().is_object()) {
-        requireTextureKeys(v, {"texture", "checkerboard", "scale"});
+        requireTextureKeys(v, {"texture", "checkerboard", "scale", "raw"});
         if (auto checker = v.find("checkerboard")) {
             if (v.has("texture")) v.fail("'texture' and 'checkerboard' are exclusive: give one");
             for (std::string_view key : kTextureSamplingKeys)
                 if (v.has(key)) v.get(key).fail("applies to image textures, not to a checkerboard");
+            if (v.has("raw")) v.get("raw").fail("applies to image textures, not to a checkerboard");
             out.checkerboard = parseCheckerboard(*checker);
             out.value = Color(1.0f);
             if (auto scale = v.find("scale")) out.value = scale->color();
@@ -83,6 +84,7 @@ void parseTexturedColor(const JsonValue& v, const fs::path& folder, TexturedColo
         }
         out.texture.file = textureFile(v.get("texture"), folder);
         parseTextureSampling(v, out.texture);
+        if (auto raw = v.find("raw")) out.texture.raw = raw->boolean();
         out.value = Color(1.0f);
         if (auto scale = v.find("scale")) out.value = scale->color();
         return;
@@ -91,7 +93,7 @@ void parseTexturedColor(const JsonValue& v, const fs::path& folder, TexturedColo
 }
 
 // A scalar in [lo, hi] given as a number, {"texture": file, "channel": "g",
-// "scale": x, sampling keys}, {"attribute": name, "channel": "g", "scale": x}
+// "scale": x, "raw": true, sampling keys}, {"attribute": name, "channel": "g", "scale": x}
 // or {"checkerboard": {"color0": x, "color1": y, "scale": s}, "scale": x}.
 void parseTexturedFloat(const JsonValue& v, const fs::path& folder, float lo, float hi,
                         TexturedFloat& out) {
@@ -108,9 +110,10 @@ void parseTexturedFloat(const JsonValue& v, const fs::path& folder, float lo, fl
                     c->fail("a scalar checkerboard takes numbers, got ", c->describe());
             out.checkerboard = parseCheckerboard(*checker);
         } else {
-            requireTextureKeys(v, {"texture", "channel", "scale"});
+            requireTextureKeys(v, {"texture", "channel", "scale", "raw"});
             out.texture.file = textureFile(v.get("texture"), folder);
             parseTextureSampling(v, out.texture);
+            if (auto raw = v.find("raw")) out.texture.raw = raw->boolean();
         }
         out.value = 1.0f;
         if (auto scale = v.find("scale")) out.value = scale->numberIn(lo, hi);

@@ -279,10 +279,10 @@ private:
         return pairs;
     }
 
-    // A bitmap or checkerboard as a strahl texture object. `raw` (no sRGB
-    // decoding) is accepted where strahl reads the texture as data anyway
-    // (normal maps).
-    json texture(const Object& t, bool rawAllowed = false) {
+    // A bitmap, checkerboard or mesh attribute as a strahl texture object. A
+    // bitmap says whether it is read raw (Mitsuba's default: sRGB-decoded,
+    // whether a colour or a number is read from it).
+    json texture(const Object& t) {
         if (t.type == "checkerboard") return checkerboard(t);
         if (t.type == "mesh_attribute") {
             // Read per vertex (interpolated) or per face, by the name the
@@ -297,8 +297,7 @@ private:
         if (t.type != "bitmap")
             unsupported(t, "only bitmap, checkerboard and mesh_attribute textures are supported (not '" + t.type + "')");
         allowOnly(t, {"filename", "raw", "filter_type", "wrap_mode", "to_uv"}, {"format"});
-        if (boolean(t, "raw", false) && !rawAllowed)
-            unsupported(t, "raw (no sRGB decoding of 8-bit images) is not supported yet");
+
         // Mitsuba reads a bitmap at the point, without MIP levels: strahl's
         // bilinear or nearest filter, not its default footprint filter.
         const std::string filter = text(t, "filter_type", "bilinear");
@@ -307,7 +306,10 @@ private:
         const std::string wrap = text(t, "wrap_mode", "repeat");
         if (wrap != "repeat" && wrap != "mirror" && wrap != "clamp")
             fail(t.property("wrap_mode")->place.text(), ": wrap_mode must be repeat, mirror or clamp");
-        json texture = {{"texture", file(t, "texture image")}, {"filter", filter}, {"wrap", wrap}};
+        json texture = {{"texture", file(t, "texture image")},
+                        {"filter", filter},
+                        {"wrap", wrap},
+                        {"raw", boolean(t, "raw", false)}};
         // to_uv acts on Mitsuba's uv, which is strahl's image coordinates
         // (s, t) = (u, 1 - v): its 2D affine part is the uv_transform.
         if (t.property("to_uv")) {
@@ -401,6 +403,14 @@ private:
         return bsdfMaterial(*inner->object);
     }
 
+    // A spot's or projector's image: strahl reads it as a colour image,
+    // sRGB-decoded; a raw one is refused.
+    static json lightImage(const Object& t, json image) {
+        if (image.value("raw", false)) unsupported(t, "a raw bitmap as a light's image is not supported");
+        image.erase("raw");
+        return image;
+    }
+
     // The adapter's <texture>, which must be a bitmap read raw (as data):
     // strahl reads normal and height maps without sRGB decoding.
     json rawBitmap(const Object& b, const std::string& what) {
@@ -411,7 +421,9 @@ private:
         const Object& t = *map->object;
         if (t.type != "bitmap" || !boolean(t, "raw", false))
             unsupported(t, what + " must be a bitmap with raw = true (strahl reads it as data)");
-        return texture(t, /*rawAllowed=*/true);
+        json image = texture(t);
+        image.erase("raw");  // strahl reads normal and height maps as data
+        return image;
     }
 
     // Mitsuba's tangent-space normal map, n = 2 texel - 1 in the frame of
@@ -894,7 +906,7 @@ private:
             if (c.object->tag != "texture" || c.name != "texture")
                 unsupported(*c.object, "not supported inside a spot emitter");
             if (c.object->type != "bitmap") unsupported(*c.object, "a spot projects a bitmap only");
-            light["texture"] = texture(*c.object);
+            light["texture"] = lightImage(*c.object, texture(*c.object));
             light["up"] = vec3(glm::normalize(y));
         }
         lights_.push_back(light);
@@ -919,7 +931,10 @@ private:
         if (irradiance.is_object()) {
             if (!irradiance.contains("texture"))
                 unsupported(e, "a projector projects a bitmap or a constant irradiance only");
-            light["texture"] = irradiance;
+            const Child* image = nullptr;
+            for (const Child& c : e.children)
+                if (c.name == "irradiance") image = &c;
+            light["texture"] = lightImage(*image->object, irradiance);
             light["irradiance"] = scale;
         } else if (irradiance.is_array()) {
             light["irradiance"] = {scale * irradiance[0].get<double>(), scale * irradiance[1].get<double>(),

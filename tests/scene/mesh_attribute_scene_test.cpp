@@ -10,9 +10,8 @@
 #include <fstream>
 #include <string>
 
+#include "albedo_probe.h"
 #include "strahl/core/error.h"
-#include "strahl/integrator/surface_hit.h"
-#include "strahl/material/material.h"
 #include "strahl/scene/scene_builder.h"
 #include "strahl/scene/scene_desc.h"
 #include "test_support.h"
@@ -51,18 +50,7 @@ World build(const std::string& material, const std::string& shapes,
 
 const std::string kSquare = R"({"type": "mesh", "file": "square.ply", "material": "m"})";
 
-// The albedo (a diffuse material's colour) where a downward ray meets (x, y).
-Color albedoAt(const World& world, float x, float y) {
-    Ray ray;
-    ray.origin = Vec3(x, y, 1.0f);
-    ray.dir = Vec3(0, 0, -1);
-    const Hit hit = world.accel->intersect(ray);
-    EXPECT_TRUE(hit.valid());
-    if (!hit.valid()) return Color(-1.0f);
-    const SurfaceHit surface(world, ray, hit);
-    return makeBsdf(surface.material(), shadingPointAt(surface.interaction()), world.textures.get())
-        .albedo();
-}
+using test::albedoAt;
 
 TEST(MeshAttributeScene, FaceColoursReachTheBsdfThroughEveryTracer) {
     const std::string material = R"({"name": "m", "color": {"attribute": "face_color", "scale": 0.5}})";

@@ -26,6 +26,10 @@ struct TextureRef {
     // An affine map of the image coordinates (s, t) = (u, 1 − v) applied
     // before the lookup (uv mapping only): (s', t', 1) = stTransform (s, t, 1).
     Mat3 stTransform{1.0f};
+    // Whether an 8-bit image is read as stored (true) or sRGB-decoded
+    // (false); unset, the input decides: colours are decoded, scalars and
+    // maps are data.
+    std::optional<bool> raw;
 
     bool valid() const { return handle.valid(); }
     // Whether the value varies over the surface (an image or an attribute).
