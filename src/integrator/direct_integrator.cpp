@@ -14,8 +14,9 @@ namespace strahl {
 Color DirectIntegrator::shade(const World& world, const SurfaceHit& hit, Sampler& sampler,
                               ShadingStats& stats) const {
     const ShadingContext ctx = makeShadingContext(world, hit, 0.0f);
-    Color L = ctx.material->emits() ? emittedTowards(world, ctx, world.areaLightOf(hit.hit()))
-                                    : Color(0.0f);
+    Color L = ctx.material->emits() && !hideEmitters_
+                  ? emittedTowards(world, ctx, world.areaLightOf(hit.hit()))
+                  : Color(0.0f);
     if (ctx.bsdf.isSpecular()) return L;
     for (const Light& light : world.lightSet.lights())
         L += estimateLight(world, ctx, light, sampler.get2D(), 1.0f, LightSampling::LightOnly,

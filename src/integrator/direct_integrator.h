@@ -7,12 +7,16 @@ namespace strahl {
 
 class DirectIntegrator final : public Integrator {
 public:
+    explicit DirectIntegrator(bool hideEmitters = false) : hideEmitters_(hideEmitters) {}
     std::string_view name() const override { return "direct"; }
     Color shade(const World& world, const SurfaceHit& hit, Sampler& sampler,
                 ShadingStats& stats) const override;
     Color miss(const World& world, const Ray& ray) const override {
-        return world.escapedRadiance(glm::normalize(ray.dir));
+        return hideEmitters_ ? Color(0.0f) : world.escapedRadiance(glm::normalize(ray.dir));
     }
+
+private:
+    bool hideEmitters_;  // every ray it shades is a camera ray
 };
 
 }  // namespace strahl

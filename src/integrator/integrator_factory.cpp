@@ -33,7 +33,7 @@ std::unique_ptr<Integrator> makeIntegrator(std::string_view name, const World& w
     if (name == "primid") return std::make_unique<PrimIdIntegrator>();
     if (name == "ao") return std::make_unique<AoIntegrator>(world, options);
     if (name == "path") return std::make_unique<PathIntegrator>(options);
-    return std::make_unique<DirectIntegrator>();
+    return std::make_unique<DirectIntegrator>(options.hideEmitters);
 }
 
 }  // namespace strahl

@@ -75,6 +75,7 @@ Color PathIntegrator::shade(const World& world, const SurfaceHit& first, Sampler
         };
 
         if (!hit.valid()) {
+            if (depth == 0 && options_.hideEmitters) break;
             const Vec3 dir = glm::normalize(ray.dir);
             for (uint32_t i : world.lightSet.infiniteLights()) {
                 const Light& light = world.lightSet.lights()[i];
@@ -89,7 +90,7 @@ Color PathIntegrator::shade(const World& world, const SurfaceHit& first, Sampler
         const float footprint = options_.coneWidth + options_.coneAngle * pathLength;
         const ShadingContext ctx = makeShadingContext(world, surface, footprint);
 
-        if (ctx.material->emits()) {
+        if (ctx.material->emits() && !(depth == 0 && options_.hideEmitters)) {
             const uint32_t areaLight = world.areaLightOf(hit);
             const Color Le = emittedTowards(world, ctx, areaLight);
             if (maxComponent(Le) > 0.0f)

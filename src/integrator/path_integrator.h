@@ -12,7 +12,7 @@ public:
     Color shade(const World& world, const SurfaceHit& hit, Sampler& sampler,
                 ShadingStats& stats) const override;
     Color miss(const World& world, const Ray& ray) const override {
-        return world.escapedRadiance(glm::normalize(ray.dir));
+        return options_.hideEmitters ? Color(0.0f) : world.escapedRadiance(glm::normalize(ray.dir));
     }
 
 private:

@@ -1107,8 +1107,8 @@ private:
             // ptracer traces from the lights; volpath and volpathmis add
             // media, which a scene reaching here has none of (they are refused
             // first): the expected image of each is the path tracer's.
-            allowOnly(i, {"max_depth", "rr_depth"}, {"hide_emitters", "samples_per_pass"});
-            if (boolean(i, "hide_emitters", false)) unsupported(i, "hide_emitters is not supported");
+            allowOnly(i, {"max_depth", "rr_depth", "hide_emitters"}, {"samples_per_pass"});
+            if (boolean(i, "hide_emitters", false)) render_["hide_emitters"] = true;
             const int maxDepth = integer(i, "max_depth", -1);
             if (maxDepth == 0 || maxDepth < -1) unsupported(i, "max_depth must be -1 or at least 1");
             // Mitsuba counts path vertices: 1 sees emitters only, 2 adds direct
@@ -1121,8 +1121,8 @@ private:
             return;
         }
         if (i.type == "direct") {
-            allowOnly(i, {}, {"emitter_samples", "bsdf_samples", "shading_samples", "hide_emitters"});
-            if (boolean(i, "hide_emitters", false)) unsupported(i, "hide_emitters is not supported");
+            allowOnly(i, {"hide_emitters"}, {"emitter_samples", "bsdf_samples", "shading_samples"});
+            if (boolean(i, "hide_emitters", false)) render_["hide_emitters"] = true;
             render_["integrator"] = "direct";
             render_.erase("max_depth");
             return;

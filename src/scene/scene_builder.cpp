@@ -392,6 +392,7 @@ IntegratorOptions buildIntegratorOptions(const SceneDesc& desc, const Camera& ca
     options.clampIndirect = desc.render.clampIndirect;
     options.aoDistance = desc.render.aoDistance;
     options.aoSamples = desc.render.aoSamples;
+    options.hideEmitters = desc.render.hideEmitters;
     // One pixel's extent on the image plane: a width for orthographic rays,
     // an angle (extent / focal distance) for perspective ones.
     const ImageWindow& w = camera.window();

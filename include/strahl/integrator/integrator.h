@@ -50,6 +50,9 @@ struct IntegratorOptions {
     LightSampling sampling = LightSampling::Mis;
     float aoDistance = 0.0f;   // ao: occluder search distance; 0: the scene's diagonal / 4
     int aoSamples = 1;         // ao: rays per camera sample
+    // direct, path: camera rays see no emission (emitting surfaces, lights'
+    // shapes, the sky), only what the emitters light (Mitsuba's hide_emitters).
+    bool hideEmitters = false;
     // Ray cone of camera rays for texture filtering: footprint width at
     // distance t is coneWidth + coneAngle * t (perspective: coneWidth 0).
     float coneWidth = 0.0f;

@@ -98,6 +98,7 @@ struct RenderDesc {
     float clampIndirect = 0.0f;
     float aoDistance = 0.0f;     // ao (0: a quarter of the scene diagonal)
     int aoSamples = 1;           // ao
+    bool hideEmitters = false;   // direct, path: emitters and the sky unseen by camera rays
 };
 
 struct MaterialDesc {
