@@ -321,6 +321,14 @@ TEST(MitsubaImport, DisksCylindersAndEmittingSpheresAreMeshesOrExactSurfaces) {
                 HasSubstr("a textured material on a Mitsuba disk is not supported"));
 }
 
+TEST(MitsubaImport, HideEmittersIsTheRenderSetting) {
+    EXPECT_TRUE(parse(scene("", R"(<integrator type="path"><boolean name="hide_emitters" value="true"/></integrator>)"))
+                    .render.hideEmitters);
+    EXPECT_TRUE(parse(scene("", R"(<integrator type="direct"><boolean name="hide_emitters" value="true"/></integrator>)"))
+                    .render.hideEmitters);
+    EXPECT_FALSE(parse(scene("")).render.hideEmitters);
+}
+
 TEST(MitsubaImport, AFilmCropIsTheScenesCrop) {
     std::string text = scene("");
     const std::string film = R"(<integer name="height" value="32"/>)";
