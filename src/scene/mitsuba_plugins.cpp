@@ -522,12 +522,13 @@ private:
                 unsupported(*c.object, "not a parameter of " + b.type + " (docs/mitsuba.md lists them)");
         json m = {{"type", "principled"}, {"color", color(b, "base_color", 0.5)}};
         if (thin) m["thin"] = true;
-        for (const auto& [mitsuba, strahl] : names) {
+        for (const auto& name : names) {
+            const std::string mitsuba = name.first;  // (clang cannot capture a structured binding)
             const bool given = b.property(mitsuba) != nullptr ||
                                std::any_of(b.children.begin(), b.children.end(),
                                            [&](const Child& c) { return c.name == mitsuba; });
             if (!given) continue;
-            m[strahl] = scalar(b, mitsuba, 0.0);
+            m[name.second] = scalar(b, mitsuba, 0.0);
         }
         for (const Child& c : b.children)
             if (c.name == "eta") unsupported(*c.object, "a textured 'eta' is not supported");
