@@ -107,6 +107,12 @@ json matrixOp(const glm::dmat4& m) {
     return json::array({json{{"matrix", rows}}});
 }
 
+// Whether `name` is given, as a property or as a nested object (a texture).
+bool given(const Object& o, const std::string& name) {
+    return o.property(name) != nullptr ||
+           std::any_of(o.children.begin(), o.children.end(), [&](const Child& c) { return c.name == name; });
+}
+
 const Child* child(const Object& o, const std::string& tag, const std::string& name = "") {
     for (const Child& c : o.children)
         if (c.object->tag == tag && (name.empty() || c.name == name || c.name.empty())) return &c;
@@ -476,9 +482,7 @@ private:
         for (const Child& c : b.children)
             if (c.object->tag == "bsdf") parts.push_back(c.object.get());
         if (parts.size() != 2) unsupported(b, "needs two nested <bsdf>s");
-        const bool given = b.property("weight") || std::any_of(b.children.begin(), b.children.end(),
-                                                               [](const Child& c) { return c.name == "weight"; });
-        if (!given) unsupported(b, "needs a weight");
+        if (!given(b, "weight")) unsupported(b, "needs a weight");
         const json weight = scalar(b, "weight", 0.5);
         json materials = json::array();
         for (const Object* part : parts) {
@@ -522,14 +526,8 @@ private:
                 unsupported(*c.object, "not a parameter of " + b.type + " (docs/mitsuba.md lists them)");
         json m = {{"type", "principled"}, {"color", color(b, "base_color", 0.5)}};
         if (thin) m["thin"] = true;
-        for (const auto& name : names) {
-            const std::string mitsuba = name.first;  // (clang cannot capture a structured binding)
-            const bool given = b.property(mitsuba) != nullptr ||
-                               std::any_of(b.children.begin(), b.children.end(),
-                                           [&](const Child& c) { return c.name == mitsuba; });
-            if (!given) continue;
-            m[name.second] = scalar(b, mitsuba, 0.0);
-        }
+        for (const auto& [mitsuba, strahl] : names)
+            if (given(b, mitsuba)) m[strahl] = scalar(b, mitsuba, 0.0);
         for (const Child& c : b.children)
             if (c.name == "eta") unsupported(*c.object, "a textured 'eta' is not supported");
         if (b.property("eta") && b.property("specular")) unsupported(b, "give either eta or specular");
