@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
             case Command::Bench: return runBench(options.bench);
             case Command::Assemble: return runAssemble(options.assemble);
             case Command::Merge: return runMerge(options.merge);
+            case Command::Denoise: return runDenoise(options.denoise);
             default: return runInfo(options);
         }
     } catch (const strahl::Error& e) {

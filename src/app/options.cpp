@@ -26,7 +26,8 @@ constexpr const char* kDescription =
     "  strahl info SCENE.json                                primitive counts, bounds, memory\n"
     "  strahl bench --out results.csv --plot cost.svg        Embree vs naive vs raster\n"
     "  strahl assemble r*.exr -o image.exr                   stitch --region renders\n"
-    "  strahl merge part*.exr -o image.exr                   add up --sample-offset renders\n\n"
+    "  strahl merge part*.exr -o image.exr                   add up --sample-offset renders\n"
+    "  strahl denoise noisy.exr -o clean.exr -o clean.png     denoise a --denoise render\n\n"
     "The scene format is documented in docs/scene-format.md (Mitsuba 3 scenes: docs/mitsuba.md),\n"
     "the options in docs/cli.md.\n"
     "Exit status: 0 success, 1 error (bad scene, mesh or output), 2 bad command line.";
@@ -193,6 +194,11 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
                        "Path tracer: the same for indirect light (two or more reflections); 0 = "
                        "off (overrides render.clamp_indirect)")
         ->check(CLI::Range(0.0f, 1e30f));
+    render->add_flag("--denoise", o.denoiseRender,
+                     "Write the NFOR-denoised beauty as the main image (and to PNG/JPEG/TIFF); "
+                     "EXRs keep the noisy beauty, the features and the even/odd sample halves as "
+                     "layers. Needs at least 2 spp; a --sample-offset part keeps the halves for "
+                     "strahl merge, then strahl denoise (sets render.denoise; docs/denoising.md)");
     std::string cropText;
     render->add_option("--crop", cropText,
                        "Render only pixels X0<=x<X1, Y0<=y<Y1 (y=0 at the top): X0,Y0,X1,Y1");
@@ -296,6 +302,7 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
     CLI::App* bench = addBenchCommand(app, o.bench);
     CLI::App* assemble = addAssembleCommand(app, o.assemble);
     CLI::App* merge = addMergeCommand(app, o.merge);
+    CLI::App* denoise = addDenoiseCommand(app, o.denoise);
 
     try {
         app.parse(argc, argv);
@@ -326,6 +333,7 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
                 : bench->parsed()    ? Command::Bench
                 : assemble->parsed() ? Command::Assemble
                 : merge->parsed()    ? Command::Merge
+                : denoise->parsed()  ? Command::Denoise
                                      : Command::Info;
     o.jsonProgress = progressFormat == "json";
     if (packets == "16") o.packets = PacketMode::Packet16;

@@ -10,6 +10,7 @@
 
 #include "assemble_command.h"
 #include "bench_command.h"
+#include "denoise_command.h"
 #include "merge_command.h"
 #include "strahl/core/pixel_rect.h"
 #include "strahl/film/display_transform.h"
@@ -18,7 +19,7 @@
 
 namespace strahl::app {
 
-enum class Command { None, Render, Info, Convert, Bench, Assemble, Merge };
+enum class Command { None, Render, Info, Convert, Bench, Assemble, Merge, Denoise };
 
 struct Options {
     Command command = Command::None;
@@ -27,6 +28,7 @@ struct Options {
     std::vector<std::string> outputs;  // overrides the scene's film.outputs
     std::optional<int> width, height, spp, threads, maxDepth;
     std::optional<float> clampDirect, clampIndirect;
+    bool denoiseRender = false;  // --denoise
     std::optional<std::string> integrator;
     std::optional<uint64_t> seed;
     std::optional<PixelRect> crop;  // from --crop or --region (the farm's spelling)
@@ -64,6 +66,8 @@ struct Options {
     AssembleOptions assemble;
     // merge
     MergeOptions merge;
+    // denoise
+    DenoiseOptions denoise;
 };
 
 // The -D arguments as a map (a later one for the same name wins).

@@ -35,6 +35,7 @@ std::vector<ScenePatch> scenePatches(const Options& o) {
     if (o.clampIndirect)
         add("/render/clamp_indirect", *o.clampIndirect, flag("--clamp-indirect", *o.clampIndirect));
     if (o.exrFloat) add("/film/exr_float", true, "--exr-float");
+    if (o.denoiseRender) add("/render/denoise", true, "--denoise");
     if (!o.aovs.empty()) {
         std::vector<std::string> aovs;  // each once, in the order first given
         std::string origin;

@@ -21,6 +21,8 @@ constexpr int kCountPieces = 2;  // ceil(32 / 24)
 constexpr const char* kSumPrefix = "strahl.sum.";
 constexpr const char* kSamplesChannel = "strahl.count.samples";
 constexpr const char* kHitsChannel = "strahl.count.hits";
+constexpr const char* kEvenSamplesChannel = "strahl.count.even_samples";
+constexpr const char* kEvenHitsChannel = "strahl.count.even_hits";
 constexpr const char* kWelfordPrefix = "strahl.welford.";
 
 // The film's state as named fields of a FilmPixel, by kind.
@@ -34,7 +36,8 @@ bool has(const std::vector<AovKind>& aovs, AovKind kind) {
     return std::find(aovs.begin(), aovs.end(), kind) != aovs.end();
 }
 
-Fields fieldsOf(const std::vector<AovKind>& aovs) {
+// halves: the film keeps the even samples' sums too (Film::keepHalves).
+Fields fieldsOf(const std::vector<AovKind>& aovs, bool halves) {
     Fields f;
     const auto sum3 = [&](const std::string& prefix, const char* suffixes, ExactSum3 FilmPixel::*m) {
         for (int c = 0; c < 3; ++c)
@@ -78,6 +81,17 @@ Fields fieldsOf(const std::vector<AovKind>& aovs) {
     }
     if (has(aovs, AovKind::Depth) || has(aovs, AovKind::Position))
         f.counts.emplace_back(kHitsChannel, [](FilmPixel& p) -> uint32_t& { return p.hits; });
+    if (halves) {
+        sum3("even.", "RGB", &FilmPixel::evenRadiance);
+        sum3("even.normal.", "XYZ", &FilmPixel::evenNormal);
+        sum3("even.albedo.", "RGB", &FilmPixel::evenAlbedo);
+        f.sums.emplace_back(std::string(kSumPrefix) + "even.depth.Z",
+                            [](FilmPixel& p) -> ExactSum& { return p.evenDepth; });
+        f.counts.emplace_back(kEvenSamplesChannel,
+                              [](FilmPixel& p) -> uint32_t& { return p.evenSamples; });
+        f.counts.emplace_back(kEvenHitsChannel,
+                              [](FilmPixel& p) -> uint32_t& { return p.evenHits; });
+    }
     return f;
 }
 
@@ -137,7 +151,7 @@ std::optional<std::vector<SampleRange>> parseRanges(std::string_view text) {
 
 void appendExactChannels(const Film& film, std::vector<std::string>& names,
                          std::vector<std::vector<float>>& planes) {
-    Fields fields = fieldsOf(film.aovs());
+    Fields fields = fieldsOf(film.aovs(), film.keepsHalves());
     // objectid is written as an ordinary AOV channel already.
     std::erase_if(fields.values, [](const auto& f) { return f.first.rfind(kWelfordPrefix, 0) != 0; });
     const PixelRect& crop = film.crop();
@@ -176,7 +190,7 @@ bool hasExactChannels(const std::vector<std::string>& channels) {
 
 void readExactChannels(Film& film, const std::vector<std::string>& channels,
                        const std::vector<float>& pixels, const std::string& source) {
-    Fields fields = fieldsOf(film.aovs());
+    Fields fields = fieldsOf(film.aovs(), film.keepsHalves());
     std::unordered_map<std::string, size_t> column;
     for (size_t c = 0; c < channels.size(); ++c) column[channels[c]] = c;
     const auto find = [&](const std::string& name) {

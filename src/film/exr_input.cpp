@@ -9,6 +9,7 @@
 #include <system_error>
 
 #include "strahl/core/error.h"
+#include "strahl/film/denoise_layers.h"
 #include "strahl/film/exact_part.h"
 
 namespace strahl {
@@ -75,7 +76,8 @@ ExrHeader readExrHeader(const fs::path& file) {
         h.aovs.push_back(kind);
     }
     for (const std::string& channel : h.channels) {
-        if (channel == "R" || channel == "G" || channel == "B" || channel.rfind("strahl.", 0) == 0)
+        if (channel == "R" || channel == "G" || channel == "B" || channel.rfind("strahl.", 0) == 0 ||
+            isDenoiseLayerChannel(channel))
             continue;
         const size_t dot = channel.find('.');
         const auto kind = aovFromName(channel.substr(0, dot));
@@ -147,6 +149,8 @@ Film readExrFilm(const ExrHeader& h) {
 
     Film film(h.fullWidth, h.fullHeight, window, h.aovs);
     if (h.exact()) {
+        // A part rendered with --denoise carries the even samples' sums too.
+        if (channelIndex(h, "strahl.sum.even.R.0") < h.channels.size()) film.keepHalves(0);
         readExactChannels(film, h.channels, pixels, name);
         // A complete part has every sample of its ranges in every pixel; an
         // interrupted one (or one stopped by --time-limit) does not, and its

@@ -34,6 +34,16 @@ Vec3 meanOf(const ExactSum3& sum, uint32_t n) {
 void addTo(ExactSum3& sum, const ExactSum3& other) {
     for (size_t c = 0; c < 3; ++c) sum[c] += other[c];
 }
+
+// The sum over one half of the samples: half 0 is the even sum itself, half 1
+// the total minus it (exact: both are integers).
+ExactSum halfOf(int half, const ExactSum& total, const ExactSum& even) {
+    return half == 0 ? even : ExactSum::fromRaw(total.raw() - even.raw());
+}
+Vec3 halfMean(int half, const ExactSum3& total, const ExactSum3& even, uint32_t n) {
+    return Vec3(halfOf(half, total[0], even[0]).mean(n), halfOf(half, total[1], even[1]).mean(n),
+                halfOf(half, total[2], even[2]).mean(n));
+}
 }  // namespace
 
 std::span<const std::string_view> aovNames() { return kAovNames; }
@@ -118,9 +128,38 @@ size_t Film::index(int x, int y) const {
            static_cast<size_t>(x - crop_.x0);
 }
 
+void Film::keepHalves(uint32_t firstSample) {
+    for (AovKind kind : {AovKind::Normal, AovKind::Depth, AovKind::Albedo})
+        if (std::find(aovs_.begin(), aovs_.end(), kind) == aovs_.end())
+            fail("film: the sample halves need the '", aovName(kind), "' AOV");
+    if (std::any_of(samples_.begin(), samples_.end(), [](uint32_t n) { return n > 0; }))
+        fail("film: keepHalves after samples were added");
+    const size_t pixels = samples_.size();
+    firstSample_ = firstSample;
+    evenSamples_.assign(pixels, 0u);
+    evenHits_.assign(pixels, 0u);
+    evenRadiance_.assign(pixels, ExactSum3{});
+    evenNormal_.assign(pixels, ExactSum3{});
+    evenDepth_.assign(pixels, ExactSum{});
+    evenAlbedo_.assign(pixels, ExactSum3{});
+}
+
 void Film::addSample(int x, int y, const Color& radiance, const AovSample& aov) {
     const size_t i = index(x, y);
     const bool first = samples_[i] == 0;
+    // This sample's index is firstSample_ + samples_[i]: even ones also go to
+    // the even sums.
+    const bool even = !evenSamples_.empty() && ((firstSample_ + samples_[i]) & 1u) == 0;
+    if (even) {
+        addTo(evenRadiance_[i], radiance);
+        ++evenSamples_[i];
+        if (aov.hit) {
+            addTo(evenNormal_[i], aov.normal);
+            addTo(evenAlbedo_[i], aov.albedo);
+            evenDepth_[i].add(aov.depth);
+            ++evenHits_[i];
+        }
+    }
     addTo(radiance_[i], radiance);
     ++samples_[i];
     if (!m2_.empty()) {
@@ -192,6 +231,43 @@ std::vector<float> Film::resolveAov(AovKind kind) const {
     return out;
 }
 
+std::vector<float> Film::resolveHalfBeauty(int half) const {
+    if (!keepsHalves()) fail("film: the sample halves were not kept");
+    std::vector<float> out(radiance_.size() * 3);
+    for (size_t i = 0; i < radiance_.size(); ++i) {
+        const uint32_t n = half == 0 ? evenSamples_[i] : samples_[i] - evenSamples_[i];
+        const Vec3 mean = halfMean(half, radiance_[i], evenRadiance_[i], n);
+        for (int c = 0; c < 3; ++c) out[3 * i + size_t(c)] = mean[c];
+    }
+    return out;
+}
+
+std::vector<float> Film::resolveHalfAov(int half, AovKind kind) const {
+    if (!keepsHalves()) fail("film: the sample halves were not kept");
+    const size_t channels = static_cast<size_t>(aovChannels(kind));
+    std::vector<float> out(samples_.size() * channels);
+    for (size_t i = 0; i < samples_.size(); ++i) {
+        const uint32_t n = half == 0 ? evenSamples_[i] : samples_[i] - evenSamples_[i];
+        const uint32_t hits = half == 0 ? evenHits_[i] : hits_[i] - evenHits_[i];
+        Vec3 value(0.0f);
+        switch (kind) {
+            case AovKind::Depth:
+                out[i] = hits > 0 ? halfOf(half, depth_[i], evenDepth_[i]).mean(hits) : kInfinity;
+                continue;
+            case AovKind::Normal:
+                value = halfMean(half, normal_[i], evenNormal_[i], n);
+                break;
+            case AovKind::Albedo:
+                value = halfMean(half, albedo_[i], evenAlbedo_[i], n);
+                break;
+            default:
+                fail("film: AOV '", aovName(kind), "' is not kept per half");
+        }
+        for (size_t c = 0; c < 3; ++c) out[channels * i + c] = value[int(c)];
+    }
+    return out;
+}
+
 FilmPixel Film::pixel(int x, int y) const {
     if (!crop_.contains(PixelRect{x, y, x + 1, y + 1})) fail("film: pixel outside the crop window");
     const size_t i = index(x, y);
@@ -206,6 +282,14 @@ FilmPixel Film::pixel(int x, int y) const {
     if (!objectId_.empty()) p.objectId = objectId_[i];
     if (!mean_.empty()) p.mean = mean_[i];
     if (!m2_.empty()) p.m2 = m2_[i];
+    if (keepsHalves()) {
+        p.evenSamples = evenSamples_[i];
+        p.evenHits = evenHits_[i];
+        p.evenRadiance = evenRadiance_[i];
+        p.evenNormal = evenNormal_[i];
+        p.evenDepth = evenDepth_[i];
+        p.evenAlbedo = evenAlbedo_[i];
+    }
     return p;
 }
 
@@ -222,6 +306,14 @@ void Film::setPixel(int x, int y, const FilmPixel& p) {
     if (!objectId_.empty()) objectId_[i] = p.objectId;
     if (!mean_.empty()) mean_[i] = p.mean;
     if (!m2_.empty()) m2_[i] = p.m2;
+    if (keepsHalves()) {
+        evenSamples_[i] = p.evenSamples;
+        evenHits_[i] = p.evenHits;
+        evenRadiance_[i] = p.evenRadiance;
+        evenNormal_[i] = p.evenNormal;
+        evenDepth_[i] = p.evenDepth;
+        evenAlbedo_[i] = p.evenAlbedo;
+    }
 }
 
 void Film::merge(const Film& later, const std::string& source) {
@@ -229,6 +321,9 @@ void Film::merge(const Film& later, const std::string& source) {
         later.crop_.x0 != crop_.x0 || later.crop_.y0 != crop_.y0 || later.crop_.x1 != crop_.x1 ||
         later.crop_.y1 != crop_.y1 || later.aovs_ != aovs_)
         fail(source, ": cannot merge films of different size, crop window or AOVs");
+    if (later.keepsHalves() != keepsHalves())
+        fail(source, ": cannot merge a film that keeps the sample halves (--denoise) with one "
+                     "that does not");
     for (size_t i = 0; i < samples_.size(); ++i) {
         const uint32_t na = samples_[i], nb = later.samples_[i];
         if (nb > ExactSum::kMaxSamples - na)
@@ -236,6 +331,14 @@ void Film::merge(const Film& later, const std::string& source) {
                  " samples, the most the exact sums can hold");
         addTo(radiance_[i], later.radiance_[i]);
         samples_[i] = na + nb;
+        if (keepsHalves()) {
+            evenSamples_[i] += later.evenSamples_[i];
+            evenHits_[i] += later.evenHits_[i];
+            addTo(evenRadiance_[i], later.evenRadiance_[i]);
+            addTo(evenNormal_[i], later.evenNormal_[i]);
+            evenDepth_[i] += later.evenDepth_[i];
+            addTo(evenAlbedo_[i], later.evenAlbedo_[i]);
+        }
         if (!hits_.empty()) hits_[i] += later.hits_[i];
         if (!normal_.empty()) addTo(normal_[i], later.normal_[i]);
         if (!depth_.empty()) depth_[i] += later.depth_[i];
@@ -348,6 +451,12 @@ void Film::writeState(std::ostream& out) const {
     writeVector(out, objectId_);
     writeVector(out, mean_);
     writeVector(out, m2_);
+    writeVector(out, evenSamples_);
+    writeVector(out, evenHits_);
+    writeVector(out, evenRadiance_);
+    writeVector(out, evenNormal_);
+    writeVector(out, evenDepth_);
+    writeVector(out, evenAlbedo_);
 }
 
 void Film::readState(std::istream& in, const std::string& source) {
@@ -361,6 +470,12 @@ void Film::readState(std::istream& in, const std::string& source) {
     readVector(in, objectId_, source, "objectid");
     readVector(in, mean_, source, "variance mean");
     readVector(in, m2_, source, "variance m2");
+    readVector(in, evenSamples_, source, "even samples");
+    readVector(in, evenHits_, source, "even hits");
+    readVector(in, evenRadiance_, source, "even radiance");
+    readVector(in, evenNormal_, source, "even normal");
+    readVector(in, evenDepth_, source, "even depth");
+    readVector(in, evenAlbedo_, source, "even albedo");
 }
 
 }  // namespace strahl

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "strahl/core/error.h"
+#include "strahl/film/denoise_layers.h"
 
 namespace strahl {
 namespace {
@@ -152,11 +153,21 @@ namespace {
 // EXR: the crop is the data window inside the full display window, so crops
 // of one image composite into the whole.
 OIIO::ImageSpec exrSpec(const Film& film, const OutputSettings& settings,
-                        const ImageMetadata& metadata, std::vector<float>& pixels) {
+                        const ImageMetadata& metadata, const std::vector<float>* denoised,
+                        std::vector<float>& pixels) {
     const OIIO::TypeDesc format = settings.exrFloat ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF;
     std::vector<std::string> names{"R", "G", "B"};
     std::vector<OIIO::TypeDesc> formats(3, format);
-    std::vector<std::vector<float>> planes{film.resolveBeauty()};
+    std::vector<std::vector<float>> planes;
+    if (denoised) {
+        // The denoised image is the main one; the rendered beauty stays as a layer.
+        planes.push_back(*denoised);
+        planes.push_back(film.resolveBeauty());
+        for (const char* c : {"noisy.R", "noisy.G", "noisy.B"}) names.push_back(c);
+        formats.resize(names.size(), format);
+    } else {
+        planes.push_back(film.resolveBeauty());
+    }
     for (AovKind kind : film.aovs()) {
         // Ids are always float: half holds integers exactly only up to 2048.
         const OIIO::TypeDesc aovFormat = kind == AovKind::ObjectId ? OIIO::TypeDesc::FLOAT : format;
@@ -165,6 +176,10 @@ OIIO::ImageSpec exrSpec(const Film& film, const OutputSettings& settings,
             formats.push_back(aovFormat);
         }
         planes.push_back(film.resolveAov(kind));
+    }
+    if (film.keepsHalves()) {
+        appendHalfLayers(film, names, planes);
+        formats.resize(names.size(), format);
     }
     // A part of a split render: the exact state, as float channels (exact_part.h).
     if (metadata.part) {
@@ -273,20 +288,27 @@ void checkOutputPath(const fs::path& file) {
 }
 
 void writeImage(const Film& film, const fs::path& file, const OutputSettings& settings,
-                const ImageMetadata& metadata) {
+                const ImageMetadata& metadata, const std::vector<float>* denoised) {
     const Format& format = formatOf(file);
+    if (denoised && denoised->size() != size_t(film.crop().width()) * size_t(film.crop().height()) * 3)
+        fail(file.string(), ": the denoised image does not match the film's size");
     if (format.encoding == Encoding::SceneLinearExr) {
         std::vector<float> pixels;
-        OIIO::ImageSpec spec = exrSpec(film, settings, metadata, pixels);
+        OIIO::ImageSpec spec = exrSpec(film, settings, metadata, denoised, pixels);
         writeFile(file, format, spec, OIIO::TypeDesc::FLOAT, pixels.data());
         return;
     }
 
-    const int width = film.crop().width();
-    const int height = film.crop().height();
-    std::vector<float> rgb = film.resolveBeauty();
-    DisplayTransform::get(settings.color)->apply(rgb, width, height);
+    writeDisplayImage(denoised ? *denoised : film.resolveBeauty(), film.crop().width(),
+                      film.crop().height(), file, settings, metadata);
+}
 
+void writeDisplayImage(std::vector<float> rgb, int width, int height, const fs::path& file,
+                       const OutputSettings& settings, const ImageMetadata& metadata) {
+    const Format& format = formatOf(file);
+    if (format.encoding == Encoding::SceneLinearExr)
+        fail(file.string(), ": writeDisplayImage writes PNG, JPEG or TIFF, not EXR");
+    DisplayTransform::get(settings.color)->apply(rgb, width, height);
     const OIIO::TypeDesc type =
         format.encoding == Encoding::Display16 ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8;
     OIIO::ImageSpec spec(width, height, 3, type);

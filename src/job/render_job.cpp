@@ -11,6 +11,7 @@
 #include "strahl/distributed/distributed.h"
 #include "strahl/film/checkpoint.h"
 #include "strahl/film/image_output.h"
+#include "strahl/job/denoise_film.h"
 #include "strahl/job/existing_outputs.h"
 #include "strahl/job/fingerprints.h"
 #include "strahl/job/frame_pattern.h"
@@ -90,6 +91,12 @@ void checkBeforeLoading(const RenderJob& job, const SceneDesc& desc,
     if (job.distributed && (raster || job.checkpoint || job.resume || job.timeLimit))
         fail("--distributed renders every tile whole, in one go, with the ray tracer: "
              "--algorithm raster, --checkpoint, --resume and --time-limit do not apply to it");
+    if (desc.render.denoise && raster)
+        fail("render.denoise (--denoise) needs the ray tracer: the rasterizer renders one sample "
+             "per pixel, and the denoiser needs two independent halves");
+    if (desc.render.denoise && !job.sampleOffset && desc.render.spp < 2)
+        fail("render.denoise (--denoise) needs at least 2 samples per pixel (one for each of the "
+             "even and odd halves it compares); got ", desc.render.spp);
     if (job.sampleOffset && (raster || job.distributed))
         fail("--sample-offset splits the samples of a local ray-traced render: --algorithm raster "
              "and --distributed do not apply to it");
@@ -336,7 +343,12 @@ JobResult runRenderJob(const RenderJob& given, JobObserver& observer) {
     const Camera camera = buildCamera(scene.camera, desc.film.width, desc.film.height);
     const auto integrator =
         makeIntegrator(desc.render.integrator, world, buildIntegratorOptions(desc, camera));
-    Film film(desc.film.width, desc.film.height, crop, desc.film.aovs);
+    std::vector<AovKind> aovs = desc.film.aovs;
+    if (desc.render.denoise)  // the denoiser's features, written as EXR layers too
+        for (AovKind kind : {AovKind::Normal, AovKind::Depth, AovKind::Albedo, AovKind::Variance})
+            if (std::find(aovs.begin(), aovs.end(), kind) == aovs.end()) aovs.push_back(kind);
+    Film film(desc.film.width, desc.film.height, crop, aovs);
+    if (desc.render.denoise) film.keepHalves(static_cast<uint32_t>(job.sampleOffset.value_or(0)));
     if (raster) {
         rasterize(job, desc, world, camera, *integrator, film, observer, result);
     } else {
@@ -349,10 +361,27 @@ JobResult runRenderJob(const RenderJob& given, JobObserver& observer) {
     OutputSettings output;
     output.exrFloat = desc.film.exrFloat;
     output.color = job.color;
-    const ImageMetadata metadata =
+    ImageMetadata metadata =
         imageMetadata(job, document, desc, scene.camera, camera, result.render, fingerprint);
+    std::optional<std::vector<float>> denoised;
+    if (desc.render.denoise && job.sampleOffset) {
+        observer.note("--denoise with --sample-offset: the part keeps the sample halves; denoise "
+                      "after strahl merge with strahl denoise");
+    } else if (desc.render.denoise && result.render.completedPasses < 2) {
+        observer.note("not denoised: every pixel needs at least 2 samples, the render stopped "
+                      "after " + std::to_string(result.render.completedPasses));
+    } else if (desc.render.denoise) {
+        const auto denoiseStart = Clock::now();
+        DenoiseSettings settings;
+        settings.threads = job.build.threads;
+        denoised = denoise(denoiseInputOf(film), settings, job.scene.string());
+        const double seconds = secondsSince(denoiseStart);
+        result.denoiseSeconds = seconds;
+        metadata.extra["denoiser"] = "nfor";
+        observer.note(concat("denoised (NFOR) in ", seconds, " s"));
+    }
     for (const fs::path& out : outputs) {
-        writeImage(film, out, output, metadata);
+        writeImage(film, out, output, metadata, denoised ? &*denoised : nullptr);
         observer.note("wrote " + out.string());
     }
     result.report = makeReport(job, desc, crop, outputs, result);

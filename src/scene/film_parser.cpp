@@ -84,7 +84,7 @@ FilmDesc parseFilm(const JsonValue& v, const fs::path& folder) {
 RenderDesc parseRender(const JsonValue& v) {
     v.requireKeys({"integrator", "spp", "seed", "max_depth", "russian_roulette",
                    "russian_roulette_depth", "ao_distance", "ao_samples", "clamp_direct",
-                   "clamp_indirect", "light_selection", "hide_emitters"});
+                   "clamp_indirect", "light_selection", "hide_emitters", "denoise"});
     RenderDesc r;
     if (auto integrator = v.find("integrator"))
         r.integrator = integrator->oneOf(integratorNames());
@@ -95,6 +95,7 @@ RenderDesc parseRender(const JsonValue& v) {
     if (auto depth = v.find("max_depth")) r.maxDepth = static_cast<int>(depth->integer(0, 1024));
     if (auto rr = v.find("russian_roulette")) r.russianRoulette = rr->boolean();
     if (auto hide = v.find("hide_emitters")) r.hideEmitters = hide->boolean();
+    if (auto denoise = v.find("denoise")) r.denoise = denoise->boolean();
     if (auto selection = v.find("light_selection"))
         r.lightSelection = selection->oneOf({"power", "uniform"}) == "uniform"
                                ? LightSelection::UniformEmitters

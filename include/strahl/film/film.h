@@ -74,6 +74,13 @@ struct FilmPixel {
     float objectId = -1.0f;  // the first sample's, -1 if it missed
     Color mean{0.0f};        // Welford's running mean of the radiance (variance AOV)
     Color m2{0.0f};          // and its sum of squared deviations
+    // The same sums over the samples of even index alone (Film::keepHalves).
+    uint32_t evenSamples = 0;
+    uint32_t evenHits = 0;
+    ExactSum3 evenRadiance{};
+    ExactSum3 evenNormal{};
+    ExactSum evenDepth{};
+    ExactSum3 evenAlbedo{};
 };
 
 class Film {
@@ -90,6 +97,17 @@ public:
     // sample belongs to, not necessarily the one its raster position lies in.
     // The first call for a pixel is its first sample (the objectid AOV).
     void addSample(int x, int y, const Color& radiance, const AovSample& aov);
+
+    // Also keeps the beauty, normal, depth and albedo sums of the samples of
+    // even index alone, so that the image splits into two independent halves,
+    // even and odd samples, as the denoiser needs (denoise/denoiser.h): the
+    // odd half is the total minus the even one, exactly. A sample's index is
+    // firstSample plus the samples the pixel already has (a part of a split
+    // render starts at its --sample-offset), so the halves of merged parts
+    // are those of one render. Needs the normal, depth and albedo AOVs; call
+    // before the first sample.
+    void keepHalves(uint32_t firstSample);
+    bool keepsHalves() const { return !evenSamples_.empty(); }
 
     // Samples accumulated so far in pixel (x, y) (full-image coordinates).
     uint32_t sampleCount(int x, int y) const { return samples_[index(x, y)]; }
@@ -128,18 +146,27 @@ public:
     // Resolved crop-sized images, row-major from the top row, interleaved channels.
     std::vector<float> resolveBeauty() const;  // RGB
     std::vector<float> resolveAov(AovKind kind) const;
+    // The beauty (RGB) or the normal, depth or albedo AOV over one half of the
+    // samples: half 0 the even sample indices, half 1 the odd ones
+    // (keepHalves). A pixel without samples in the half reads as one without
+    // samples at all.
+    std::vector<float> resolveHalfBeauty(int half) const;
+    std::vector<float> resolveHalfAov(int half, AovKind kind) const;
 
 private:
     size_t index(int x, int y) const;
     // Every per-pixel buffer, in one fixed order (packPixels, unpackPixels).
     auto buffers() const {
         return std::tie(radiance_, samples_, hits_, normal_, depth_, albedo_, position_,
-                        objectId_, mean_, m2_);
+                        objectId_, mean_, m2_, evenSamples_, evenHits_, evenRadiance_,
+                        evenNormal_, evenDepth_, evenAlbedo_);
     }
     auto buffers() {
         return std::tie(radiance_, samples_, hits_, normal_, depth_, albedo_, position_,
-                        objectId_, mean_, m2_);
+                        objectId_, mean_, m2_, evenSamples_, evenHits_, evenRadiance_,
+                        evenNormal_, evenDepth_, evenAlbedo_);
     }
+
 
     int fullWidth_, fullHeight_;
     PixelRect crop_;
@@ -154,6 +181,14 @@ private:
     std::vector<float> objectId_;
     std::vector<Color> mean_;  // Welford's running mean of the radiance
     std::vector<Color> m2_;    // Welford's sum of squared deviations from it
+    // keepHalves: the sums of the samples of even index alone.
+    uint32_t firstSample_ = 0;
+    std::vector<uint32_t> evenSamples_;
+    std::vector<uint32_t> evenHits_;
+    std::vector<ExactSum3> evenRadiance_;
+    std::vector<ExactSum3> evenNormal_;
+    std::vector<ExactSum> evenDepth_;
+    std::vector<ExactSum3> evenAlbedo_;
 };
 
 }  // namespace strahl

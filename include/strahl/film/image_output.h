@@ -18,6 +18,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "strahl/film/display_transform.h"
 #include "strahl/film/exact_part.h"
@@ -60,8 +61,19 @@ std::span<const std::string_view> supportedImageExtensions();
 // fail before it starts rather than after.
 void checkOutputPath(const std::filesystem::path& file);
 
+// `denoised`, if given (crop-sized RGB), is written as the beauty and the
+// film's own beauty as the EXR layer "noisy" (film/denoise_layers.h); display
+// formats show the denoised image. A film that keeps the sample halves also
+// writes their layers to EXR.
 void writeImage(const Film& film, const std::filesystem::path& file, const OutputSettings& settings,
-                const ImageMetadata& metadata);
+                const ImageMetadata& metadata, const std::vector<float>* denoised = nullptr);
+
+// A display-referred image (PNG, JPEG or TIFF, by extension) of scene-linear
+// RGB pixels (width x height, interleaved), through the display transform
+// exactly as writeImage writes a film's beauty.
+void writeDisplayImage(std::vector<float> rgb, int width, int height,
+                       const std::filesystem::path& file, const OutputSettings& settings,
+                       const ImageMetadata& metadata);
 
 // The temp-then-rename writer behind writeImage, for every other file strahl
 // writes whole (assembled images, statistics): `write` creates the file at the

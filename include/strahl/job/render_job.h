@@ -121,6 +121,7 @@ struct JobResult {
     BuildTimings timings;
     std::string integrator;  // the scene's, after patches
     size_t shapeBytes = 0, bvhBytes = 0;  // the World's memory
+    double denoiseSeconds = 0.0;          // render.denoise: the denoiser's time
 };
 
 // Runs the job. Throws strahl::Error naming the file and place for anything

@@ -99,6 +99,9 @@ struct RenderDesc {
     float aoDistance = 0.0f;     // ao (0: a quarter of the scene diagonal)
     int aoSamples = 1;           // ao
     bool hideEmitters = false;   // direct, path: emitters and the sky unseen by camera rays
+    // Keep the even and odd samples' halves and write the NFOR-denoised beauty
+    // as the main image (docs/denoising.md); ray tracing, at least 2 spp.
+    bool denoise = false;
 };
 
 struct MaterialDesc {

@@ -1,0 +1,233 @@
+// The NFOR pipeline (Bitterli et al. 2016; docs/denoising.md):
+//  1. features: each of albedo, normal and depth is the mean of its two
+//     halves, prefiltered by NL-means with its own variance, estimated from
+//     the halves' difference;
+//  2. for each candidate bandwidth k, each half of the colour is fitted by
+//     the collaborative first-order regression (regression.h) with weights
+//     from the *other* half (cross-filtering: the weights do not see the
+//     noise they average, which would otherwise survive the filter);
+//  3. each candidate's error is estimated per pixel against the other half,
+//     the estimates are smoothed, and each pixel takes the candidates in
+//     the proportions a smoothed "which is best" map gives.
+
+#include "strahl/denoise/denoiser.h"
+
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "nl_means.h"
+#include "patch_weights.h"
+#include "planar_image.h"
+#include "regression.h"
+#include "strahl/core/error.h"
+
+namespace strahl {
+
+using denoise_detail::collaborativeRegression;
+using denoise_detail::kFeatureCount;
+using denoise_detail::nlMeans;
+using denoise_detail::PatchWeights;
+using denoise_detail::PlanarImage;
+using denoise_detail::toInterleaved;
+using denoise_detail::toPlanar;
+
+namespace {
+
+// Feature prefiltering (NFOR section 6): NL-means, 11 x 11 window, 7 x 7
+// patches, bandwidth 0.5. First-hit features are nearly noise-free except
+// where a pixel sees several surfaces or through depth of field; this
+// removes what noise they carry without moving their edges.
+constexpr int kFeatureWindow = 5;
+constexpr int kFeaturePatch = 3;
+constexpr float kFeatureBandwidth = 0.5f;
+// The error estimates and the selection maps are smoothed by NL-means on
+// the colour with 3 x 3 patches and bandwidth 1 over an 11 x 11 window: the
+// per-pixel estimates rest on one sample of a squared difference each.
+constexpr int kErrorWindow = 5;
+constexpr int kErrorPatch = 1;
+constexpr float kErrorBandwidth = 1.0f;
+
+void checkBuffer(const std::vector<float>& buffer, size_t expected, const std::string& source,
+                 const char* what, int channels, bool depth, bool nonNegative) {
+    if (buffer.size() != expected * size_t(channels))
+        fail(source, ": denoiser buffer '", what, "' has ", buffer.size(), " values, expected ",
+             expected * size_t(channels));
+    for (size_t i = 0; i < buffer.size(); ++i) {
+        const float v = buffer[i];
+        const bool ok = std::isfinite(v) ? (!nonNegative || v >= 0.0f)
+                                         : depth && v == std::numeric_limits<float>::infinity();
+        if (!ok)
+            fail(source, ": denoiser buffer '", what, "' holds ", v, " at pixel ",
+                 i / size_t(channels), " (", depth ? "depth must be finite or +inf"
+                                          : nonNegative ? "must be finite and >= 0"
+                                                        : "must be finite", ")");
+    }
+}
+
+// The half's features as kFeatureCount planes: albedo, normal, depth / maxDepth
+// (0 where no sample hit).
+PlanarImage featurePlanes(const DenoiseHalf& half, int width, int height, float maxDepth) {
+    PlanarImage f(width, height, kFeatureCount);
+    const size_t n = f.planeSize();
+    for (size_t i = 0; i < n; ++i) {
+        for (int c = 0; c < 3; ++c) {
+            f.plane(c)[i] = half.albedo[3 * i + size_t(c)];
+            f.plane(3 + c)[i] = half.normal[3 * i + size_t(c)];
+        }
+        const float d = half.depth[i];
+        f.plane(6)[i] = std::isfinite(d) && maxDepth > 0.0f ? d / maxDepth : 0.0f;
+    }
+    return f;
+}
+
+// 3 x 3 box mean with clamped borders.
+PlanarImage boxFilter3(const PlanarImage& in) {
+    PlanarImage out(in.width, in.height, in.channels);
+    for (int c = 0; c < in.channels; ++c)
+        for (int y = 0; y < in.height; ++y)
+            for (int x = 0; x < in.width; ++x) {
+                float sum = 0.0f;
+                for (int j = -1; j <= 1; ++j)
+                    for (int i = -1; i <= 1; ++i)
+                        sum += in.at(c, std::clamp(x + i, 0, in.width - 1),
+                                     std::clamp(y + j, 0, in.height - 1));
+                out.at(c, x, y) = sum / 9.0f;
+            }
+    return out;
+}
+
+// Step 1: the prefiltered features shared by both halves' regressions.
+PlanarImage prefilterFeatures(const PlanarImage& f0, const PlanarImage& f1) {
+    PlanarImage out(f0.width, f0.height, kFeatureCount);
+    const size_t n = out.planeSize();
+    // Albedo, normal and depth are filtered separately: each has its own edges.
+    const int groups[3][2] = {{0, 3}, {3, 3}, {6, 1}};
+    for (const auto& group : groups) {
+        const int first = group[0], count = group[1];
+        PlanarImage mean(f0.width, f0.height, count), diff(f0.width, f0.height, count);
+        for (int c = 0; c < count; ++c)
+            for (size_t i = 0; i < n; ++i) {
+                const float a = f0.plane(first + c)[i], b = f1.plane(first + c)[i];
+                mean.plane(c)[i] = 0.5f * (a + b);
+                // E[(a - b)^2] = 2 var(half) and var(mean) = var(half) / 2.
+                diff.plane(c)[i] = 0.25f * (a - b) * (a - b);
+            }
+        const PlanarImage variance = boxFilter3(diff);
+        const PatchWeights weights(mean, variance, kFeaturePatch, kFeatureBandwidth);
+        const PlanarImage filtered = nlMeans(mean, weights, kFeatureWindow);
+        std::copy(filtered.data.begin(), filtered.data.end(), out.plane(first));
+    }
+    return out;
+}
+
+}  // namespace
+
+void checkDenoiseInput(const DenoiseInput& input, const std::string& source) {
+    if (input.width <= 0 || input.height <= 0)
+        fail(source, ": denoiser image size ", input.width, "x", input.height, " is not positive");
+    const size_t n = size_t(input.width) * size_t(input.height);
+    const char* names[2][4] = {{"half 0 beauty", "half 0 albedo", "half 0 normal", "half 0 depth"},
+                               {"half 1 beauty", "half 1 albedo", "half 1 normal", "half 1 depth"}};
+    for (int h = 0; h < 2; ++h) {
+        const DenoiseHalf& half = input.halves[size_t(h)];
+        checkBuffer(half.color, n, source, names[h][0], 3, false, false);
+        checkBuffer(half.albedo, n, source, names[h][1], 3, false, false);
+        checkBuffer(half.normal, n, source, names[h][2], 3, false, false);
+        checkBuffer(half.depth, n, source, names[h][3], 1, true, true);
+    }
+    checkBuffer(input.variance, n, source, "variance", 3, false, true);
+}
+
+std::vector<float> denoise(const DenoiseInput& input, const DenoiseSettings& settings,
+                           const std::string& source) {
+    checkDenoiseInput(input, source);
+    if (settings.windowRadius < 1 || settings.patchRadius < 0 || settings.bandwidths.empty())
+        fail(source, ": denoiser settings need a window radius >= 1, a patch radius >= 0 and a "
+                     "bandwidth");
+    const int W = input.width, H = input.height;
+    const size_t n = size_t(W) * size_t(H);
+
+    std::vector<float> result;
+    tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+        float maxDepth = 0.0f;
+        for (const DenoiseHalf& half : input.halves)
+            for (float d : half.depth)
+                if (std::isfinite(d)) maxDepth = std::max(maxDepth, d);
+        const PlanarImage features =
+            prefilterFeatures(featurePlanes(input.halves[0], W, H, maxDepth),
+                              featurePlanes(input.halves[1], W, H, maxDepth));
+
+        const PlanarImage color[2] = {toPlanar(input.halves[0].color, W, H, 3),
+                                      toPlanar(input.halves[1].color, W, H, 3)};
+        // Each half holds about half the samples: twice the variance of the full mean.
+        PlanarImage fullVariance = toPlanar(input.variance, W, H, 3);
+        PlanarImage halfVariance = fullVariance;
+        for (float& v : halfVariance.data) v *= 2.0f;
+        PlanarImage mean(W, H, 3);
+        for (size_t i = 0; i < mean.data.size(); ++i)
+            mean.data[i] = 0.5f * (color[0].data[i] + color[1].data[i]);
+
+        // Step 2: the candidates, and step 3's per-pixel error estimates.
+        const int K = static_cast<int>(settings.bandwidths.size());
+        std::vector<PlanarImage> candidates;
+        PlanarImage errors(W, H, K);
+        for (int k = 0; k < K; ++k) {
+            PlanarImage filtered[2];
+            for (int h = 0; h < 2; ++h) {
+                const PatchWeights weights(color[1 - h], halfVariance, settings.patchRadius,
+                                           settings.bandwidths[size_t(k)]);
+                filtered[h] =
+                    collaborativeRegression(color[h], features, weights, settings.windowRadius);
+            }
+            PlanarImage candidate(W, H, 3);
+            float* error = errors.plane(k);
+            for (size_t i = 0; i < n; ++i) {
+                float e = 0.0f;
+                for (int c = 0; c < 3; ++c) {
+                    const float a = filtered[0].plane(c)[i], b = filtered[1].plane(c)[i];
+                    candidate.plane(c)[i] = 0.5f * (a + b);
+                    // (F_A - c_B)^2 - var(c_B) estimates F_A's squared error
+                    // without bias where F_A does not depend on c_B.
+                    const float ea = a - color[1].plane(c)[i], eb = b - color[0].plane(c)[i];
+                    e += 0.5f * (ea * ea + eb * eb) - halfVariance.plane(c)[i];
+                }
+                error[i] = e / 3.0f;
+            }
+            candidates.push_back(std::move(candidate));
+        }
+
+        PlanarImage blended(W, H, 3);
+        if (K == 1) {
+            blended = std::move(candidates[0]);
+        } else {
+            const PatchWeights smoothing(mean, fullVariance, kErrorPatch, kErrorBandwidth);
+            const PlanarImage smoothedErrors = nlMeans(errors, smoothing, kErrorWindow);
+            PlanarImage best(W, H, K);
+            for (size_t i = 0; i < n; ++i) {
+                int arg = 0;
+                for (int k = 1; k < K; ++k)
+                    if (smoothedErrors.plane(k)[i] < smoothedErrors.plane(arg)[i]) arg = k;
+                best.plane(arg)[i] = 1.0f;
+            }
+            const PlanarImage selection = nlMeans(best, smoothing, kErrorWindow);
+            for (size_t i = 0; i < n; ++i) {
+                float total = 0.0f;
+                for (int k = 0; k < K; ++k) total += selection.plane(k)[i];
+                for (int c = 0; c < 3; ++c) {
+                    float v = 0.0f;
+                    for (int k = 0; k < K; ++k)
+                        v += selection.plane(k)[i] * candidates[size_t(k)].plane(c)[i];
+                    blended.plane(c)[i] = v / total;
+                }
+            }
+        }
+        result = toInterleaved(blended);
+    });
+    return result;
+}
+
+}  // namespace strahl
