@@ -123,6 +123,82 @@ PlanarImage prefilterFeatures(const PlanarImage& f0, const PlanarImage& f1) {
     return out;
 }
 
+// One filtering pass over both halves: every candidate bandwidth's
+// regression of each noisy half, with weights from the other half's guide,
+// then the per-pixel choice among the candidates.
+struct FilterPass {
+    PlanarImage halves[2];  // each half filtered, candidates blended by the selection
+    PlanarImage combined;   // their mean: the pass's result
+};
+
+// color: the noisy halves, each with variance colorVariance; guide: the
+// images the weights compare (guide[1 - h] for half h), with guideVariance;
+// guideMean, guideMeanVariance: their mean, which guides the smoothing of
+// the error estimates.
+FilterPass filterPass(const PlanarImage (&color)[2], const PlanarImage& colorVariance,
+                      const PlanarImage (&guide)[2], const PlanarImage& guideVariance,
+                      const PlanarImage& guideMean, const PlanarImage& guideMeanVariance,
+                      const PlanarImage& features, const DenoiseSettings& settings) {
+    const int W = color[0].width, H = color[0].height;
+    const size_t n = color[0].planeSize();
+    const int K = static_cast<int>(settings.bandwidths.size());
+    std::vector<PlanarImage> filtered[2];
+    for (int h = 0; h < 2; ++h) {
+        const PatchWeights weights(guide[1 - h], guideVariance, settings.patchRadius, 1.0f);
+        filtered[h] = collaborativeRegression(color[h], features, weights, settings.windowRadius,
+                                              settings.bandwidths);
+    }
+
+    FilterPass pass{{PlanarImage(W, H, 3), PlanarImage(W, H, 3)}, PlanarImage(W, H, 3)};
+    if (K == 1) {
+        pass.halves[0] = filtered[0][0];
+        pass.halves[1] = filtered[1][0];
+    } else {
+        // Each candidate's squared error, estimated per pixel: (F_A - c_B)^2
+        // - var(c_B) is unbiased where F_A does not depend on c_B (its
+        // weights do, a little, through the guide).
+        PlanarImage errors(W, H, K);
+        for (int k = 0; k < K; ++k) {
+            float* error = errors.plane(k);
+            for (size_t i = 0; i < n; ++i) {
+                float e = 0.0f;
+                for (int c = 0; c < 3; ++c) {
+                    const float ea = filtered[0][size_t(k)].plane(c)[i] - color[1].plane(c)[i];
+                    const float eb = filtered[1][size_t(k)].plane(c)[i] - color[0].plane(c)[i];
+                    e += 0.5f * (ea * ea + eb * eb) - colorVariance.plane(c)[i];
+                }
+                error[i] = e / 3.0f;
+            }
+        }
+        // Smoothed estimates, the best candidate per pixel, and the smoothed
+        // one-hot choice as blending weights (no seams between choices).
+        const PatchWeights smoothing(guideMean, guideMeanVariance, kErrorPatch, kErrorBandwidth);
+        const PlanarImage smoothedErrors = nlMeans(errors, smoothing, kErrorWindow);
+        PlanarImage best(W, H, K);
+        for (size_t i = 0; i < n; ++i) {
+            int arg = 0;
+            for (int k = 1; k < K; ++k)
+                if (smoothedErrors.plane(k)[i] < smoothedErrors.plane(arg)[i]) arg = k;
+            best.plane(arg)[i] = 1.0f;
+        }
+        const PlanarImage selection = nlMeans(best, smoothing, kErrorWindow);
+        for (int h = 0; h < 2; ++h)
+            for (size_t i = 0; i < n; ++i) {
+                float total = 0.0f;
+                for (int k = 0; k < K; ++k) total += selection.plane(k)[i];
+                for (int c = 0; c < 3; ++c) {
+                    float v = 0.0f;
+                    for (int k = 0; k < K; ++k)
+                        v += selection.plane(k)[i] * filtered[h][size_t(k)].plane(c)[i];
+                    pass.halves[h].plane(c)[i] = v / total;
+                }
+            }
+    }
+    for (size_t i = 0; i < pass.combined.data.size(); ++i)
+        pass.combined.data[i] = 0.5f * (pass.halves[0].data[i] + pass.halves[1].data[i]);
+    return pass;
+}
+
 }  // namespace
 
 void checkDenoiseInput(const DenoiseInput& input, const std::string& source) {
@@ -148,7 +224,6 @@ std::vector<float> denoise(const DenoiseInput& input, const DenoiseSettings& set
         fail(source, ": denoiser settings need a window radius >= 1, a patch radius >= 0 and a "
                      "bandwidth");
     const int W = input.width, H = input.height;
-    const size_t n = size_t(W) * size_t(H);
 
     std::vector<float> result;
     tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
@@ -171,61 +246,11 @@ std::vector<float> denoise(const DenoiseInput& input, const DenoiseSettings& set
         for (size_t i = 0; i < mean.data.size(); ++i)
             mean.data[i] = 0.5f * (color[0].data[i] + color[1].data[i]);
 
-        // Step 2: the candidates, and step 3's per-pixel error estimates.
-        const int K = static_cast<int>(settings.bandwidths.size());
-        std::vector<PlanarImage> candidates;
-        PlanarImage errors(W, H, K);
-        for (int k = 0; k < K; ++k) {
-            PlanarImage filtered[2];
-            for (int h = 0; h < 2; ++h) {
-                const PatchWeights weights(color[1 - h], halfVariance, settings.patchRadius,
-                                           settings.bandwidths[size_t(k)]);
-                filtered[h] =
-                    collaborativeRegression(color[h], features, weights, settings.windowRadius);
-            }
-            PlanarImage candidate(W, H, 3);
-            float* error = errors.plane(k);
-            for (size_t i = 0; i < n; ++i) {
-                float e = 0.0f;
-                for (int c = 0; c < 3; ++c) {
-                    const float a = filtered[0].plane(c)[i], b = filtered[1].plane(c)[i];
-                    candidate.plane(c)[i] = 0.5f * (a + b);
-                    // (F_A - c_B)^2 - var(c_B) estimates F_A's squared error
-                    // without bias where F_A does not depend on c_B.
-                    const float ea = a - color[1].plane(c)[i], eb = b - color[0].plane(c)[i];
-                    e += 0.5f * (ea * ea + eb * eb) - halfVariance.plane(c)[i];
-                }
-                error[i] = e / 3.0f;
-            }
-            candidates.push_back(std::move(candidate));
-        }
-
-        PlanarImage blended(W, H, 3);
-        if (K == 1) {
-            blended = std::move(candidates[0]);
-        } else {
-            const PatchWeights smoothing(mean, fullVariance, kErrorPatch, kErrorBandwidth);
-            const PlanarImage smoothedErrors = nlMeans(errors, smoothing, kErrorWindow);
-            PlanarImage best(W, H, K);
-            for (size_t i = 0; i < n; ++i) {
-                int arg = 0;
-                for (int k = 1; k < K; ++k)
-                    if (smoothedErrors.plane(k)[i] < smoothedErrors.plane(arg)[i]) arg = k;
-                best.plane(arg)[i] = 1.0f;
-            }
-            const PlanarImage selection = nlMeans(best, smoothing, kErrorWindow);
-            for (size_t i = 0; i < n; ++i) {
-                float total = 0.0f;
-                for (int k = 0; k < K; ++k) total += selection.plane(k)[i];
-                for (int c = 0; c < 3; ++c) {
-                    float v = 0.0f;
-                    for (int k = 0; k < K; ++k)
-                        v += selection.plane(k)[i] * candidates[size_t(k)].plane(c)[i];
-                    blended.plane(c)[i] = v / total;
-                }
-            }
-        }
-        result = toInterleaved(blended);
+        // Weights from the other half's noisy colour (cross-filtering).
+        const FilterPass pass =
+            filterPass(color, halfVariance, color, halfVariance, mean, fullVariance, features,
+                       settings);
+        result = toInterleaved(pass.combined);
     });
     return result;
 }

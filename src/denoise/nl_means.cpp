@@ -25,7 +25,8 @@ PlanarImage nlMeans(const PlanarImage& data, const PatchWeights& weights, int wi
             total.assign(n, 0.0f);
             for (int dy = -windowRadius; dy <= windowRadius; ++dy) {
                 for (int dx = -windowRadius; dx <= windowRadius; ++dx) {
-                    weights.compute(tile, dx, dy, w.data(), scratch);
+                    weights.distances(tile, dx, dy, w.data(), scratch);
+                    for (float& v : w) v = patchWeight(v);
                     for (int y = tile.y0; y < tile.y1; ++y) {
                         const int qy = y + dy;
                         if (qy < 0 || qy >= H) continue;

@@ -1,7 +1,6 @@
 #include "patch_weights.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 
 namespace strahl::denoise_detail {
@@ -18,10 +17,6 @@ constexpr float kEpsilon = 1e-10f;
 // patch's mean distance >= kMaxDistance / (channels (2f+1)^2) >= 20 for the
 // largest patches used (3 channels, 7 x 7), a weight below e^-20.
 constexpr float kMaxDistance = 3000.0f;
-// Weights below e^-kMaxWeightDistance count as 0: they change no sum
-// measurably, and their products with small feature differences would be
-// subnormal floats, which cost a hundred cycles each on x86.
-constexpr float kMaxWeightDistance = 30.0f;
 
 int clampTo(int v, int n) { return std::clamp(v, 0, n - 1); }
 
@@ -31,30 +26,8 @@ PatchWeights::PatchWeights(const PlanarImage& guide, const PlanarImage& variance
                            int patchRadius, float k)
     : guide_(guide), variance_(variance), f_(patchRadius), k2_(k * k) {}
 
-namespace {
-
-// e^x for x in [-kMaxWeightDistance, 0], as 2^(x log2 e) split into an integer
-// power (built in the exponent bits) and 2^f, f in [0, 1), by a degree-6
-// polynomial (Taylor of 2^f = e^(f ln 2); relative error below 2e-7). Plain
-// arithmetic, so the loops around it vectorise; std::exp does not.
-inline float expNonPositive(float x) {
-    const float t = x * 1.44269504f;  // log2(e)
-    // floor(t) without a library call: truncation, one less where it rounded up.
-    int i = static_cast<int>(t);
-    i -= static_cast<float>(i) > t ? 1 : 0;
-    const float fl = static_cast<float>(i);
-    const float f = t - fl;
-    const float l = 0.69314718f * f;
-    const float p =
-        1.0f + l * (1.0f + l * (0.5f + l * (1.0f / 6 + l * (1.0f / 24 + l * (1.0f / 120 + l * (1.0f / 720))))));
-    const int e = i + 127;  // >= 127 - 44 for x >= -30: a normal float
-    return p * std::bit_cast<float>(e << 23);
-}
-
-}  // namespace
-
-void PatchWeights::compute(const Region& region, int dx, int dy, float* out,
-                           std::vector<float>& scratch) const {
+void PatchWeights::distances(const Region& region, int dx, int dy, float* out,
+                             std::vector<float>& scratch) const {
     const int W = guide_.width, H = guide_.height, C = guide_.channels;
     // Per-pixel distances over the region grown by the patch radius, then a
     // separable box sum over the patch.
@@ -135,20 +108,16 @@ void PatchWeights::compute(const Region& region, int dx, int dy, float* out,
             const float* sub = rows + size_t(y - 1) * size_t(rw);
             for (int x = 0; x < rw; ++x) column[x] += add[x] - sub[x];
         }
-        for (int x = 0; x < rw; ++x) {
-            const float D = std::max(0.0f, column[x] * norm);
-            const float w = expNonPositive(-std::min(D, kMaxWeightDistance));
-            o[x] = D < kMaxWeightDistance ? w : 0.0f;
-        }
+        for (int x = 0; x < rw; ++x) o[x] = std::max(0.0f, column[x] * norm);
         // p or q = p + (dx, dy) outside the image: no weight.
         const int py = region.y0 + y, qy = py + dy;
         if (py < 0 || py >= H || qy < 0 || qy >= H) {
-            std::fill(o, o + rw, 0.0f);
+            std::fill(o, o + rw, kNoWeight);
             continue;
         }
         for (int x = 0; x < rw; ++x) {
             const int px = region.x0 + x;
-            if (px < 0 || px >= W || px + dx < 0 || px + dx >= W) o[x] = 0.0f;
+            if (px < 0 || px >= W || px + dx < 0 || px + dx >= W) o[x] = kNoWeight;
         }
     }
 }

@@ -28,40 +28,47 @@ constexpr int kTerms = kNormalTerms + kRhsTerms;
 // more) are fitted almost unregularised.
 constexpr double kRidge = 1e-3;
 
-// Accumulates one offset's contributions for the pixels [xa, xb) of a tile
-// row (at most kTileSize). The features' differences are gathered into short
-// rows first; then every term is one simple loop over x that vectorises.
-void accumulateRow(float* __restrict sums, const float* __restrict w,
-                   const std::array<const float*, kFeatureCount>& fp,
-                   const std::array<const float*, kFeatureCount>& fq,
-                   const std::array<const float*, 3>& cq, int xa, int xb, int rowStart) {
-    const int n = xb - xa;
-    alignas(64) float v[kDim + 3][kTileSize];  // 1, feature differences, colours
-    alignas(64) float wv[kDim][kTileSize];     // w times v[a]
-    for (int x = 0; x < n; ++x) v[0][x] = 1.0f;
+// One offset's values for the pixels [xa, xb) of a tile row (at most
+// kTileSize): v[0] = 1, v[1..7] the feature differences f(q) - f(p),
+// v[8..10] the colour at q.
+struct RowValues {
+    alignas(64) float v[kDim + 3][kTileSize];
+    int n = 0;
+};
+
+void gatherRow(RowValues& row, const std::array<const float*, kFeatureCount>& fp,
+               const std::array<const float*, kFeatureCount>& fq,
+               const std::array<const float*, 3>& cq, int xa, int xb) {
+    const int n = row.n = xb - xa;
+    for (int x = 0; x < n; ++x) row.v[0][x] = 1.0f;
     for (int k = 0; k < kFeatureCount; ++k) {
         const float* __restrict q = fq[k] + xa;
         const float* __restrict p = fp[k] + xa;
-        for (int x = 0; x < n; ++x) v[k + 1][x] = q[x] - p[x];
+        for (int x = 0; x < n; ++x) row.v[k + 1][x] = q[x] - p[x];
     }
     for (int c = 0; c < 3; ++c) {
         const float* __restrict q = cq[c] + xa;
-        for (int x = 0; x < n; ++x) v[kDim + c][x] = q[x];
+        for (int x = 0; x < n; ++x) row.v[kDim + c][x] = q[x];
     }
-    const float* __restrict wr = w + rowStart + xa;
+}
+
+// Adds w v v^T and w v c^T for one row into one candidate's sums (planar,
+// kSumStride apart); every term is one simple loop over x that vectorises.
+void accumulateRow(float* __restrict sums, const float* __restrict w, const RowValues& row) {
+    const int n = row.n;
+    alignas(64) float wv[kDim][kTileSize];  // w times v[a]
     for (int a = 0; a < kDim; ++a)
-        for (int x = 0; x < n; ++x) wv[a][x] = wr[x] * v[a][x];
-    float* __restrict base = sums + rowStart + xa;
+        for (int x = 0; x < n; ++x) wv[a][x] = w[x] * row.v[a][x];
     int term = 0;
     for (int a = 0; a < kDim; ++a)
         for (int b = a; b < kDim; ++b, ++term) {
-            float* __restrict s = base + term * kSumStride;
-            for (int x = 0; x < n; ++x) s[x] += wv[a][x] * v[b][x];
+            float* __restrict s = sums + term * kSumStride;
+            for (int x = 0; x < n; ++x) s[x] += wv[a][x] * row.v[b][x];
         }
     for (int a = 0; a < kDim; ++a)
         for (int c = 0; c < 3; ++c, ++term) {
-            float* __restrict s = base + term * kSumStride;
-            for (int x = 0; x < n; ++x) s[x] += wv[a][x] * v[kDim + c][x];
+            float* __restrict s = sums + term * kSumStride;
+            for (int x = 0; x < n; ++x) s[x] += wv[a][x] * row.v[kDim + c][x];
         }
 }
 
@@ -117,21 +124,29 @@ void solvePixel(const float* sums, int i, float beta[kDim * 3]) {
 
 }  // namespace
 
-PlanarImage collaborativeRegression(const PlanarImage& color, const PlanarImage& features,
-                                    const PatchWeights& weights, int windowRadius) {
+std::vector<PlanarImage> collaborativeRegression(const PlanarImage& color,
+                                                 const PlanarImage& features,
+                                                 const PatchWeights& weights, int windowRadius,
+                                                 const std::vector<float>& bandwidths) {
     const int W = color.width, H = color.height;
+    const int K = static_cast<int>(bandwidths.size());
+    std::vector<float> inverseK2;  // D_k = D_1 / k^2 (patch_weights.h)
+    for (float k : bandwidths) inverseK2.push_back(1.0f / (k * k));
     const std::vector<Region> tiles = imageTiles(W, H, kTileSize);
+    const size_t candidateSums = size_t(kTerms) * kSumStride;
 
-    // Pass 1: every pixel's fit.
-    PlanarImage betas(W, H, kDim * 3);
+    // Pass 1: every pixel's fit, for every candidate.
+    std::vector<PlanarImage> betas(size_t(K), PlanarImage(W, H, kDim * 3));
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const auto& range) {
-        std::vector<float> scratch, w(kTilePixels), sums(size_t(kTerms) * kSumStride);
+        std::vector<float> scratch, distance(kTilePixels), w(kTileSize);
+        std::vector<float> sums(candidateSums * size_t(K));
+        RowValues row;
         for (size_t t = range.begin(); t != range.end(); ++t) {
             const Region& tile = tiles[t];
             std::fill(sums.begin(), sums.end(), 0.0f);
             for (int dy = -windowRadius; dy <= windowRadius; ++dy) {
                 for (int dx = -windowRadius; dx <= windowRadius; ++dx) {
-                    weights.compute(tile, dx, dy, w.data(), scratch);
+                    weights.distances(tile, dx, dy, distance.data(), scratch);
                     const int xa = std::max(tile.x0, -dx), xb = std::min(tile.x1, W - dx);
                     for (int y = tile.y0; y < tile.y1; ++y) {
                         const int qy = y + dy;
@@ -144,63 +159,92 @@ PlanarImage collaborativeRegression(const PlanarImage& color, const PlanarImage&
                         std::array<const float*, 3> cq;
                         for (int c = 0; c < 3; ++c)
                             cq[c] = color.plane(c) + size_t(qy) * size_t(W) + dx;
-                        // The sums' rows hold tile.width() pixels; x indexes the image.
-                        const int rowStart = (y - tile.y0) * tile.width() - tile.x0;
-                        accumulateRow(sums.data(), w.data(), fp, fq, cq, xa, xb, rowStart);
+                        gatherRow(row, fp, fq, cq, xa, xb);
+                        // The tile's rows hold tile.width() pixels.
+                        const int first = (y - tile.y0) * tile.width() + (xa - tile.x0);
+                        for (int k = 0; k < K; ++k) {
+                            for (int x = 0; x < row.n; ++x)
+                                w[size_t(x)] = patchWeight(distance[size_t(first + x)] *
+                                                           inverseK2[size_t(k)]);
+                            accumulateRow(sums.data() + size_t(k) * candidateSums + size_t(first),
+                                          w.data(), row);
+                        }
                     }
                 }
             }
-            for (int y = tile.y0; y < tile.y1; ++y)
-                for (int x = tile.x0; x < tile.x1; ++x) {
-                    float beta[kDim * 3];
-                    solvePixel(sums.data(), (y - tile.y0) * tile.width() + (x - tile.x0), beta);
-                    for (int k = 0; k < kDim * 3; ++k) betas.at(k, x, y) = beta[k];
-                }
+            for (int k = 0; k < K; ++k)
+                for (int y = tile.y0; y < tile.y1; ++y)
+                    for (int x = tile.x0; x < tile.x1; ++x) {
+                        float beta[kDim * 3];
+                        solvePixel(sums.data() + size_t(k) * candidateSums,
+                                   (y - tile.y0) * tile.width() + (x - tile.x0), beta);
+                        for (int j = 0; j < kDim * 3; ++j) betas[size_t(k)].at(j, x, y) = beta[j];
+                    }
         }
     });
 
     // Pass 2: every pixel averages the fits of the windows that contain it.
-    PlanarImage out(W, H, 3);
+    std::vector<PlanarImage> out(size_t(K), PlanarImage(W, H, 3));
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const auto& range) {
-        std::vector<float> scratch, w(kTilePixels), total(kTilePixels), sums(3 * kTilePixels);
+        std::vector<float> scratch, distance(kTilePixels);
+        std::vector<float> total(size_t(K) * kTilePixels), sums(size_t(K) * 3 * kSumStride);
+        alignas(64) float diff[kFeatureCount][kTileSize];
         for (size_t t = range.begin(); t != range.end(); ++t) {
             const Region& tile = tiles[t];
             std::fill(total.begin(), total.end(), 0.0f);
             std::fill(sums.begin(), sums.end(), 0.0f);
             for (int dy = -windowRadius; dy <= windowRadius; ++dy) {
                 for (int dx = -windowRadius; dx <= windowRadius; ++dx) {
-                    // q in the tile, p = q - (dx, dy): w(p, q) at q's place.
+                    // q in the tile, p = q - (dx, dy): D(p, q) at q's place.
                     const Region shifted{tile.x0 - dx, tile.y0 - dy, tile.x1 - dx, tile.y1 - dy};
-                    weights.compute(shifted, dx, dy, w.data(), scratch);
+                    weights.distances(shifted, dx, dy, distance.data(), scratch);
                     const int xa = std::max(tile.x0, dx), xb = std::min(tile.x1, W + dx);
+                    const int n = xb - xa;
                     for (int y = tile.y0; y < tile.y1; ++y) {
                         const int py = y - dy;
-                        if (py < 0 || py >= H) continue;
-                        const size_t qRow = size_t(y) * size_t(W), pRow = size_t(py) * size_t(W);
-                        const int rowStart = (y - tile.y0) * tile.width() - tile.x0;
-                        for (int x = xa; x < xb; ++x) {
-                            const int i = rowStart + x;
-                            const size_t q = qRow + size_t(x), p = pRow + size_t(x - dx);
-                            const float wi = w[size_t(i)];
-                            float fit[3];
-                            for (int c = 0; c < 3; ++c) fit[c] = betas.plane(c)[p];
-                            for (int k = 0; k < kFeatureCount; ++k) {
-                                const float d = features.plane(k)[q] - features.plane(k)[p];
-                                for (int c = 0; c < 3; ++c)
-                                    fit[c] += betas.plane((k + 1) * 3 + c)[p] * d;
+                        if (py < 0 || py >= H || n <= 0) continue;
+                        const size_t qRow = size_t(y) * size_t(W) + size_t(xa);
+                        const size_t pRow = size_t(py) * size_t(W) + size_t(xa - dx);
+                        for (int f = 0; f < kFeatureCount; ++f) {
+                            const float* __restrict fq = features.plane(f) + qRow;
+                            const float* __restrict fp = features.plane(f) + pRow;
+                            for (int x = 0; x < n; ++x) diff[f][x] = fq[x] - fp[x];
+                        }
+                        const int first = (y - tile.y0) * tile.width() + (xa - tile.x0);
+                        for (int k = 0; k < K; ++k) {
+                            const PlanarImage& beta = betas[size_t(k)];
+                            float* __restrict tot = total.data() + size_t(k) * kTilePixels + first;
+                            const float* __restrict d = distance.data() + first;
+                            alignas(64) float w[kTileSize];
+                            for (int x = 0; x < n; ++x) {
+                                w[x] = patchWeight(d[x] * inverseK2[size_t(k)]);
+                                tot[x] += w[x];
                             }
-                            total[size_t(i)] += wi;
-                            for (int c = 0; c < 3; ++c) sums[size_t(c * kTilePixels + i)] += wi * fit[c];
+                            for (int c = 0; c < 3; ++c) {
+                                alignas(64) float fit[kTileSize];
+                                const float* __restrict b0 = beta.plane(c) + pRow;
+                                for (int x = 0; x < n; ++x) fit[x] = b0[x];
+                                for (int f = 0; f < kFeatureCount; ++f) {
+                                    const float* __restrict bf = beta.plane((f + 1) * 3 + c) + pRow;
+                                    for (int x = 0; x < n; ++x) fit[x] += bf[x] * diff[f][x];
+                                }
+                                float* __restrict s =
+                                    sums.data() + (size_t(k) * 3 + size_t(c)) * kSumStride + first;
+                                for (int x = 0; x < n; ++x) s[x] += w[x] * fit[x];
+                            }
                         }
                     }
                 }
             }
-            for (int c = 0; c < 3; ++c)
-                for (int y = tile.y0; y < tile.y1; ++y)
-                    for (int x = tile.x0; x < tile.x1; ++x) {
-                        const int i = (y - tile.y0) * tile.width() + (x - tile.x0);
-                        out.at(c, x, y) = sums[size_t(c * kTilePixels + i)] / total[size_t(i)];
-                    }
+            for (int k = 0; k < K; ++k)
+                for (int c = 0; c < 3; ++c)
+                    for (int y = tile.y0; y < tile.y1; ++y)
+                        for (int x = tile.x0; x < tile.x1; ++x) {
+                            const size_t i = size_t((y - tile.y0) * tile.width() + (x - tile.x0));
+                            out[size_t(k)].at(c, x, y) =
+                                sums[(size_t(k) * 3 + size_t(c)) * kSumStride + i] /
+                                total[size_t(k) * kTilePixels + i];
+                        }
         }
     });
     return out;

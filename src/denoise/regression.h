@@ -18,6 +18,8 @@
 // that a window where a feature is constant gives a zero-order (NL-means)
 // fit for it instead of a singular system.
 
+#include <vector>
+
 #include "patch_weights.h"
 #include "planar_image.h"
 
@@ -25,9 +27,13 @@ namespace strahl::denoise_detail {
 
 constexpr int kFeatureCount = 7;  // albedo RGB, normal XYZ, depth
 
-// color: 3 channels; features: kFeatureCount channels of the same size.
-// Runs on the calling TBB arena.
-PlanarImage collaborativeRegression(const PlanarImage& color, const PlanarImage& features,
-                                    const PatchWeights& weights, int windowRadius);
+// color: 3 channels; features: kFeatureCount channels of the same size;
+// weights built with bandwidth 1. Returns one filtered colour image per
+// bandwidth k (weights patchWeight(D / k^2)), all fitted in one sweep over
+// the windows. Runs on the calling TBB arena.
+std::vector<PlanarImage> collaborativeRegression(const PlanarImage& color,
+                                                 const PlanarImage& features,
+                                                 const PatchWeights& weights, int windowRadius,
+                                                 const std::vector<float>& bandwidths);
 
 }  // namespace strahl::denoise_detail
