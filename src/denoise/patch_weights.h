@@ -38,10 +38,10 @@ constexpr float kNoWeight = 1e30f;
 // polynomial (Taylor of 2^f = e^(f ln 2); relative error below 2e-7). Plain
 // arithmetic, so the loops around it vectorise; std::exp does not.
 inline float expNonPositive(float x) {
-    const float t = x * 1.44269504f;  // log2(e)
-    // floor(t) without a library call: truncation, one less where it rounded up.
-    int i = static_cast<int>(t);
-    i -= static_cast<float>(i) > t ? 1 : 0;
+    const float t = x * 1.44269504f;  // log2(e), t in [-44, 0]
+    // floor(t) as the truncation of t + 64 > 0, minus 64: no library call, no
+    // branch, so it vectorises.
+    const int i = static_cast<int>(t + 64.0f) - 64;
     const float f = t - static_cast<float>(i);
     const float l = 0.69314718f * f;
     const float p =
@@ -53,7 +53,7 @@ inline float expNonPositive(float x) {
 // The weight of a patch distance D >= 0 (kNoWeight: 0).
 inline float patchWeight(float D) {
     const float w = expNonPositive(-std::min(D, kMaxWeightDistance));
-    return D < kMaxWeightDistance ? w : 0.0f;
+    return w * static_cast<float>(D < kMaxWeightDistance);
 }
 
 class PatchWeights {
