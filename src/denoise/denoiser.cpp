@@ -247,9 +247,11 @@ std::vector<float> denoise(const DenoiseInput& input, const DenoiseSettings& set
             mean.data[i] = 0.5f * (color[0].data[i] + color[1].data[i]);
 
         // Weights from the other half's noisy colour (cross-filtering).
-        const FilterPass pass =
+        FilterPass pass =
             filterPass(color, halfVariance, color, halfVariance, mean, fullVariance, features,
                        settings);
+        // A first-order fit may dip below 0 in dark regions; radiance cannot.
+        for (float& v : pass.combined.data) v = std::max(v, 0.0f);
         result = toInterleaved(pass.combined);
     });
     return result;

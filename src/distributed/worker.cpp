@@ -78,6 +78,7 @@ private:
 FinishedTile Worker::renderTile(int index) const {
     const PixelRect& rect = tiles_[static_cast<size_t>(index)];
     Film tile(film_.fullWidth(), film_.fullHeight(), rect, film_.aovs());
+    if (film_.keepsHalves()) tile.keepHalves(film_.halvesFirstSample());  // --denoise
     RenderOptions options;
     options.threads = 1;  // this thread; the worker's parallelism is across tiles
     options.tileSize = options_.tileSize;

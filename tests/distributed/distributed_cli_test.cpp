@@ -106,6 +106,19 @@ TEST(Distributed, ThreeRanksGiveTheSingleProcessImageBitForBit) {
     expectIdentical(local, readExr(out2), "mpirun -np 2, 16-pixel tiles");
 }
 
+TEST(Distributed, RankZeroDenoisesTheGatheredImage) {
+    // The film's sample halves travel with the tiles, and rank 0 denoises:
+    // the image of a local render with --denoise, bit for bit.
+    const fs::path dir = test::scratchDir("distributed-denoise");
+    const fs::path local = dir / "local.exr", out = dir / "mpi.exr";
+    const JobResult l = runShell(std::string(STRAHL_BINARY) + " render " + kScene + kImage +
+                                 " --denoise --threads 2 -o " + local.string());
+    ASSERT_EQ(l.status, 0) << l.err;
+    const JobResult r = mpirun("-np 3 " + strahlRender(out, " --denoise --threads 1 --tile 8"));
+    ASSERT_EQ(r.status, 0) << r.err;
+    expectIdentical(readExr(local), readExr(out), "mpirun -np 3 --denoise");
+}
+
 TEST(Distributed, OneRankIsAnError) {
     const fs::path dir = test::scratchDir("distributed-one-rank");
     const JobResult r = mpirun("-np 1 " + strahlRender(dir / "a.exr", ""));

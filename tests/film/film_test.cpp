@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -368,6 +369,91 @@ TEST(Film, PackedPixelsUnpackIntoAnotherFilmBitForBit) {
                 }),
                 testing::HasSubstr("tile 7: "));
     EXPECT_THROW(source.packPixels(PixelRect{0, 0, 4, 4}), Error);
+}
+
+}  // namespace
+}  // namespace strahl
+
+// --- the sample halves (keepHalves, for the denoiser) ---------------------
+
+namespace strahl {
+namespace {
+
+const std::vector<AovKind> kHalfAovs{AovKind::Normal, AovKind::Depth, AovKind::Albedo};
+
+// Sample k of a pixel: radiance k + 1, depth k + 1, albedo (k + 1) / 10, a
+// miss every third sample.
+void addSamples(Film& film, int first, int count) {
+    for (int k = first; k < first + count; ++k) {
+        const AovSample aov = k % 3 == 2 ? AovSample{}
+                                         : hitSample(Vec3(0, 0, 1), float(k + 1),
+                                                     Color(float(k + 1) / 10.0f));
+        film.addSample(0, 0, Color(float(k + 1)), aov);
+    }
+}
+
+TEST(FilmHalves, EvenAndOddSamplesGoToTheirHalves) {
+    Film film(1, 1, PixelRect{0, 0, 1, 1}, kHalfAovs);
+    film.keepHalves(0);
+    addSamples(film, 0, 6);  // even 0, 2, 4 (2 misses); odd 1, 3, 5 (5 misses)
+    // Even samples 0, 2, 4: radiance 1, 3, 5; sample 2 misses.
+    EXPECT_FLOAT_EQ(film.resolveHalfBeauty(0)[0], 3.0f);
+    EXPECT_FLOAT_EQ(film.resolveHalfBeauty(1)[0], 4.0f);  // 2, 4, 6
+    EXPECT_FLOAT_EQ(film.resolveHalfAov(0, AovKind::Depth)[0], 3.0f);   // hits 0, 4: depths 1, 5
+    EXPECT_FLOAT_EQ(film.resolveHalfAov(1, AovKind::Depth)[0], 3.0f);   // hits 1, 3: depths 2, 4
+    EXPECT_FLOAT_EQ(film.resolveHalfAov(0, AovKind::Albedo)[0], 0.2f);  // (0.1 + 0 + 0.5) / 3
+    EXPECT_FLOAT_EQ(film.resolveHalfAov(1, AovKind::Albedo)[0], 0.2f);  // (0.2 + 0.4 + 0) / 3
+    // The halves' sums add up to the whole.
+    EXPECT_FLOAT_EQ(film.resolveBeauty()[0], 3.5f);
+}
+
+TEST(FilmHalves, APartStartingAtAnOddIndexStartsInTheOddHalf) {
+    Film film(1, 1, PixelRect{0, 0, 1, 1}, kHalfAovs);
+    film.keepHalves(3);
+    film.addSample(0, 0, Color(1.0f), hitSample(Vec3(0, 0, 1), 1.0f, Color(0.5f)));
+    EXPECT_FLOAT_EQ(film.resolveHalfBeauty(1)[0], 1.0f);
+    EXPECT_FLOAT_EQ(film.resolveHalfBeauty(0)[0], 0.0f);  // no sample: black
+    EXPECT_EQ(film.resolveHalfAov(0, AovKind::Depth)[0], kInfinity);
+}
+
+TEST(FilmHalves, MergedPartsAndCheckpointsKeepTheHalvesExactly) {
+    Film whole(1, 1, PixelRect{0, 0, 1, 1}, kHalfAovs);
+    whole.keepHalves(0);
+    addSamples(whole, 0, 7);
+    Film first(1, 1, PixelRect{0, 0, 1, 1}, kHalfAovs), second = first;
+    first.keepHalves(0);
+    second.keepHalves(3);
+    addSamples(first, 0, 3);
+    addSamples(second, 3, 4);
+    first.merge(second, "part");
+    const FilmPixel a = whole.pixel(0, 0), b = first.pixel(0, 0);
+    EXPECT_EQ(a.evenSamples, b.evenSamples);
+    EXPECT_EQ(a.evenHits, b.evenHits);
+    EXPECT_EQ(a.evenRadiance, b.evenRadiance);
+    EXPECT_EQ(a.evenDepth, b.evenDepth);
+    EXPECT_EQ(a.evenAlbedo, b.evenAlbedo);
+    EXPECT_EQ(a.evenNormal, b.evenNormal);
+
+    std::stringstream state;
+    whole.writeState(state);
+    Film resumed(1, 1, PixelRect{0, 0, 1, 1}, kHalfAovs);
+    resumed.keepHalves(0);
+    resumed.readState(state, "checkpoint");
+    EXPECT_EQ(resumed.pixel(0, 0).evenRadiance, a.evenRadiance);
+    EXPECT_EQ(resumed.resolveHalfBeauty(1), whole.resolveHalfBeauty(1));
+
+    Film without(1, 1, PixelRect{0, 0, 1, 1}, kHalfAovs);
+    EXPECT_THROW(without.merge(whole, "part"), Error);
+}
+
+TEST(FilmHalves, NeedTheFeatureAovsAndComeBeforeSamples) {
+    Film noAlbedo(1, 1, PixelRect{0, 0, 1, 1}, {AovKind::Normal, AovKind::Depth});
+    EXPECT_THROW(noAlbedo.keepHalves(0), Error);
+    Film late(1, 1, PixelRect{0, 0, 1, 1}, kHalfAovs);
+    late.addSample(0, 0, Color(1.0f), AovSample{});
+    EXPECT_THROW(late.keepHalves(0), Error);
+    Film plain(1, 1, PixelRect{0, 0, 1, 1}, kHalfAovs);
+    EXPECT_THROW(plain.resolveHalfBeauty(0), Error);
 }
 
 }  // namespace

@@ -108,6 +108,7 @@ public:
     // before the first sample.
     void keepHalves(uint32_t firstSample);
     bool keepsHalves() const { return !evenSamples_.empty(); }
+    uint32_t halvesFirstSample() const { return firstSample_; }
 
     // Samples accumulated so far in pixel (x, y) (full-image coordinates).
     uint32_t sampleCount(int x, int y) const { return samples_[index(x, y)]; }
