@@ -134,8 +134,8 @@ double ssim(const std::vector<float>& image, const std::vector<float>& reference
                     xr += g * x[i] * r[i];
                 }
             mx /= w, mr /= w, xx = xx / w - mx * mx, rr = rr / w - mr * mr, xr = xr / w - mx * mr;
-            total += ((2 * mx * mr + c1) * (2 * xr + c2)) /
-                     ((mx * mx + mr * mr + c1) * (xx + rr + c2));
+            total +=
+                ((2 * mx * mr + c1) * (2 * xr + c2)) / ((mx * mx + mr * mr + c1) * (xx + rr + c2));
             ++windows;
         }
     return windows > 0 ? total / windows : 1.0;
@@ -151,15 +151,22 @@ Options parse(int argc, char** argv) {
             if (i + 1 >= argc) fail(a, " needs a value");
             return argv[++i];
         };
-        if (a == "--width") o.width = std::stoi(next());
-        else if (a == "--height") o.height = std::stoi(next());
-        else if (a == "--ref-spp") o.refSpp = std::stoi(next());
-        else if (a == "--cache") o.cache = next();
-        else if (a == "--scene") o.only.push_back(next());
-        else if (a == "--no-speed") o.speed = false;
+        if (a == "--width")
+            o.width = std::stoi(next());
+        else if (a == "--height")
+            o.height = std::stoi(next());
+        else if (a == "--ref-spp")
+            o.refSpp = std::stoi(next());
+        else if (a == "--cache")
+            o.cache = next();
+        else if (a == "--scene")
+            o.only.push_back(next());
+        else if (a == "--no-speed")
+            o.speed = false;
         else
-            fail("usage: bench_denoise [--width W] [--height H] [--ref-spp N] [--cache DIR] "
-                 "[--scene NAME]... [--no-speed]");
+            fail(
+                "usage: bench_denoise [--width W] [--height H] [--ref-spp N] [--cache DIR] "
+                "[--scene NAME]... [--no-speed]");
     }
     return o;
 }
@@ -181,8 +188,8 @@ int main(int argc, char** argv) try {
 
     std::printf("bench_denoise: %dx%d, reference %d spp (cache %s), relMSE and SSIM against it\n",
                 o.width, o.height, o.refSpp, o.cache.c_str());
-    std::printf("%-10s %14s %14s %14s %9s %9s %9s %10s\n", "scene", "relMSE 16spp",
-                "relMSE 256spp", "relMSE 16+dn", "SSIM 16", "SSIM 256", "SSIM dn", "dn/256");
+    std::printf("%-10s %14s %14s %14s %9s %9s %9s %10s\n", "scene", "relMSE 16spp", "relMSE 256spp",
+                "relMSE 16+dn", "SSIM 16", "SSIM 256", "SSIM dn", "dn/256");
     bool allPass = true;
     for (const BenchScene& s : scenes) {
         if (!o.only.empty() && std::find(o.only.begin(), o.only.end(), s.name) == o.only.end())
@@ -191,9 +198,9 @@ int main(int argc, char** argv) try {
             std::printf("%-10s skipped: ../shared/data is not there\n", s.name.c_str());
             continue;
         }
-        const fs::path ref = o.cache / (s.name + "-" + std::to_string(o.width) + "x" +
-                                        std::to_string(o.height) + "-" +
-                                        std::to_string(o.refSpp) + "spp.exr");
+        const fs::path ref =
+            o.cache / (s.name + "-" + std::to_string(o.width) + "x" + std::to_string(o.height) +
+                       "-" + std::to_string(o.refSpp) + "spp.exr");
         if (!fs::exists(ref)) render(s.file, ref, o.width, o.height, o.refSpp, 1000, false);
         const fs::path low = work / (s.name + "-16.exr"), high = work / (s.name + "-256.exr");
         render(s.file, low, o.width, o.height, 16, 1, true);
@@ -219,9 +226,10 @@ int main(int argc, char** argv) try {
         const JobResult r = render(scenes[0].file, work / "hd.exr", 1920, 1080, 16, 1, true);
         const double ratio = r.denoiseSeconds / r.render.seconds;
         allPass = allPass && ratio < 1.0;
-        std::printf("default scene 1920x1080: render 16 spp %.2f s, denoise %.2f s\n"
-                    "ratio denoise/render = %.2f  (target < 1) %s\n",
-                    r.render.seconds, r.denoiseSeconds, ratio, ratio < 1.0 ? "PASS" : "FAIL");
+        std::printf(
+            "default scene 1920x1080: render 16 spp %.2f s, denoise %.2f s\n"
+            "ratio denoise/render = %.2f  (target < 1) %s\n",
+            r.render.seconds, r.denoiseSeconds, ratio, ratio < 1.0 ? "PASS" : "FAIL");
     }
     fs::remove_all(work);
     return allPass ? 0 : 1;

@@ -1,7 +1,7 @@
 #include "denoise_command.h"
 
-#include <CLI/CLI.hpp>
 #include <OpenImageIO/imageio.h>
+#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <cctype>
@@ -42,8 +42,9 @@ ExrImage readExr(const fs::path& file) {
     std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(name);
     if (!in) fail(name, ": cannot read: ", OIIO::geterror());
     if (std::string(in->format_name()) != "openexr")
-        fail(name, ": not an OpenEXR image (strahl denoise reads the EXR of a strahl render "
-                   "with --denoise)");
+        fail(name,
+             ": not an OpenEXR image (strahl denoise reads the EXR of a strahl render "
+             "with --denoise)");
     ExrImage image;
     image.spec = in->spec();
     if (image.spec.width <= 0 || image.spec.height <= 0 || image.spec.depth != 1)
@@ -88,8 +89,9 @@ DenoiseInput denoiseInputOf(const ExrImage& image, const std::string& source) {
     }
     const int spp = image.spec.get_int_attribute("strahl:spp", 0);
     if (spp > 0 && spp < 2)
-        fail(source, ": has ", spp, " sample per pixel; the denoiser needs at least 2 (one for "
-                     "each half)");
+        fail(source, ": has ", spp,
+             " sample per pixel; the denoiser needs at least 2 (one for "
+             "each half)");
 
     DenoiseInput input;
     input.width = image.spec.width;
@@ -157,8 +159,7 @@ void writeDenoisedExr(const ExrImage& image, const std::vector<float>& denoised,
 CLI::App* addDenoiseCommand(CLI::App& app, DenoiseOptions& o) {
     CLI::App* cmd = app.add_subcommand(
         "denoise", "Denoise an EXR rendered with --denoise (or merged from --denoise parts)");
-    cmd->add_option("input", o.input, "EXR with the layers half0, half1 and variance")
-        ->required();
+    cmd->add_option("input", o.input, "EXR with the layers half0, half1 and variance")->required();
     cmd->add_option("-o,--output", o.outputs,
                     "Output image; repeat for several. .exr keeps every layer of the input with "
                     "the denoised beauty as R, G, B and the noisy one as noisy.*; .png/.jpg/.tif "
@@ -177,7 +178,8 @@ CLI::App* addDenoiseCommand(CLI::App& app, DenoiseOptions& o) {
 int runDenoise(const DenoiseOptions& o) {
     // Outputs are checked first: a bad path fails before the work.
     for (const std::string& out : o.outputs) checkOutputPath(out);
-    if (std::any_of(o.outputs.begin(), o.outputs.end(), [](const std::string& f) { return !isExr(f); }) ||
+    if (std::any_of(o.outputs.begin(), o.outputs.end(),
+                    [](const std::string& f) { return !isExr(f); }) ||
         !o.color.configFile.empty())
         DisplayTransform::get(o.color);
     const ExrImage image = readExr(o.input);

@@ -50,8 +50,9 @@ constexpr int kErrorWindow = 5;
 constexpr int kErrorPatch = 1;
 constexpr float kErrorBandwidth = 1.0f;
 
-void checkBuffer(const std::vector<float>& buffer, size_t expected, const std::string& source,
-                 const char* what, int channels, bool depth, bool nonNegative) {
+void checkBuffer(const std::vector<float>& buffer, int width, size_t expected,
+                 const std::string& source, const char* what, int channels, bool depth,
+                 bool nonNegative) {
     if (buffer.size() != expected * size_t(channels))
         fail(source, ": denoiser buffer '", what, "' has ", buffer.size(), " values, expected ",
              expected * size_t(channels));
@@ -59,11 +60,15 @@ void checkBuffer(const std::vector<float>& buffer, size_t expected, const std::s
         const float v = buffer[i];
         const bool ok = std::isfinite(v) ? (!nonNegative || v >= 0.0f)
                                          : depth && v == std::numeric_limits<float>::infinity();
-        if (!ok)
-            fail(source, ": denoiser buffer '", what, "' holds ", v, " at pixel ",
-                 i / size_t(channels), " (", depth ? "depth must be finite or +inf"
-                                          : nonNegative ? "must be finite and >= 0"
-                                                        : "must be finite", ")");
+        if (!ok) {
+            const size_t pixel = i / size_t(channels);
+            fail(source, ": denoiser buffer '", what, "' holds ", v, " at pixel (",
+                 pixel % size_t(width), ", ", pixel / size_t(width), ") (",
+                 depth         ? "depth must be finite or +inf"
+                 : nonNegative ? "must be finite and >= 0"
+                               : "must be finite",
+                 ")");
+        }
     }
 }
 
@@ -209,20 +214,21 @@ void checkDenoiseInput(const DenoiseInput& input, const std::string& source) {
                                {"half 1 beauty", "half 1 albedo", "half 1 normal", "half 1 depth"}};
     for (int h = 0; h < 2; ++h) {
         const DenoiseHalf& half = input.halves[size_t(h)];
-        checkBuffer(half.color, n, source, names[h][0], 3, false, false);
-        checkBuffer(half.albedo, n, source, names[h][1], 3, false, false);
-        checkBuffer(half.normal, n, source, names[h][2], 3, false, false);
-        checkBuffer(half.depth, n, source, names[h][3], 1, true, true);
+        checkBuffer(half.color, input.width, n, source, names[h][0], 3, false, false);
+        checkBuffer(half.albedo, input.width, n, source, names[h][1], 3, false, false);
+        checkBuffer(half.normal, input.width, n, source, names[h][2], 3, false, false);
+        checkBuffer(half.depth, input.width, n, source, names[h][3], 1, true, true);
     }
-    checkBuffer(input.variance, n, source, "variance", 3, false, true);
+    checkBuffer(input.variance, input.width, n, source, "variance", 3, false, true);
 }
 
 std::vector<float> denoise(const DenoiseInput& input, const DenoiseSettings& settings,
                            const std::string& source) {
     checkDenoiseInput(input, source);
     if (settings.windowRadius < 1 || settings.patchRadius < 0 || settings.bandwidths.empty())
-        fail(source, ": denoiser settings need a window radius >= 1, a patch radius >= 0 and a "
-                     "bandwidth");
+        fail(source,
+             ": denoiser settings need a window radius >= 1, a patch radius >= 0 and a "
+             "bandwidth");
     const int W = input.width, H = input.height;
 
     std::vector<float> result;
@@ -247,9 +253,8 @@ std::vector<float> denoise(const DenoiseInput& input, const DenoiseSettings& set
             mean.data[i] = 0.5f * (color[0].data[i] + color[1].data[i]);
 
         // Weights from the other half's noisy colour (cross-filtering).
-        FilterPass pass =
-            filterPass(color, halfVariance, color, halfVariance, mean, fullVariance, features,
-                       settings);
+        FilterPass pass = filterPass(color, halfVariance, color, halfVariance, mean, fullVariance,
+                                     features, settings);
         // A first-order fit may dip below 0 in dark regions; radiance cannot.
         for (float& v : pass.combined.data) v = std::max(v, 0.0f);
         result = toInterleaved(pass.combined);

@@ -48,8 +48,8 @@ PlanarImage nlMeans(const PlanarImage& data, const PatchWeights& weights, int wi
             for (int c = 0; c < C; ++c)
                 for (int y = tile.y0; y < tile.y1; ++y)
                     for (int x = tile.x0; x < tile.x1; ++x) {
-                        const size_t i = size_t(y - tile.y0) * size_t(tile.width()) +
-                                         size_t(x - tile.x0);
+                        const size_t i =
+                            size_t(y - tile.y0) * size_t(tile.width()) + size_t(x - tile.x0);
                         out.at(c, x, y) = sums[size_t(c) * n + i] / total[i];
                     }
         }

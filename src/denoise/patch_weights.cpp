@@ -18,12 +18,14 @@ constexpr float kEpsilon = 1e-10f;
 // largest patches used (3 channels, 7 x 7), a weight below e^-20.
 constexpr float kMaxDistance = 3000.0f;
 
-int clampTo(int v, int n) { return std::clamp(v, 0, n - 1); }
+int clampTo(int v, int n) {
+    return std::clamp(v, 0, n - 1);
+}
 
 }  // namespace
 
-PatchWeights::PatchWeights(const PlanarImage& guide, const PlanarImage& variance,
-                           int patchRadius, float k)
+PatchWeights::PatchWeights(const PlanarImage& guide, const PlanarImage& variance, int patchRadius,
+                           float k)
     : guide_(guide), variance_(variance), f_(patchRadius), k2_(k * k) {}
 
 void PatchWeights::distances(const Region& region, int dx, int dy, float* out,

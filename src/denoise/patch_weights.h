@@ -45,8 +45,9 @@ inline float expNonPositive(float x) {
     const float f = t - static_cast<float>(i);
     const float l = 0.69314718f * f;
     const float p =
-        1.0f + l * (1.0f + l * (0.5f + l * (1.0f / 6 + l * (1.0f / 24 + l * (1.0f / 120 +
-                                                                          l * (1.0f / 720))))));
+        1.0f +
+        l * (1.0f +
+             l * (0.5f + l * (1.0f / 6 + l * (1.0f / 24 + l * (1.0f / 120 + l * (1.0f / 720))))));
     return p * std::bit_cast<float>((i + 127) << 23);  // i >= -44: a normal float
 }
 

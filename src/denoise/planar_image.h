@@ -14,7 +14,10 @@ struct PlanarImage {
 
     PlanarImage() = default;
     PlanarImage(int w, int h, int c)
-        : width(w), height(h), channels(c), stride(planeStride(size_t(w) * size_t(h))),
+        : width(w),
+          height(h),
+          channels(c),
+          stride(planeStride(size_t(w) * size_t(h))),
           data(stride * size_t(c), 0.0f) {}
 
     // Plane c starts c cache lines past a multiple of 4 KiB: planes whose
@@ -26,9 +29,7 @@ struct PlanarImage {
     float* plane(int c) { return data.data() + size_t(c) * stride; }
     const float* plane(int c) const { return data.data() + size_t(c) * stride; }
     float& at(int c, int x, int y) { return plane(c)[size_t(y) * size_t(width) + size_t(x)]; }
-    float at(int c, int x, int y) const {
-        return plane(c)[size_t(y) * size_t(width) + size_t(x)];
-    }
+    float at(int c, int x, int y) const { return plane(c)[size_t(y) * size_t(width) + size_t(x)]; }
 };
 
 // Interleaved (x, y, channel) <-> planar.

@@ -164,8 +164,8 @@ std::vector<PlanarImage> collaborativeRegression(const PlanarImage& color,
                         const int first = (y - tile.y0) * tile.width() + (xa - tile.x0);
                         for (int k = 0; k < K; ++k) {
                             for (int x = 0; x < row.n; ++x)
-                                w[size_t(x)] = patchWeight(distance[size_t(first + x)] *
-                                                           inverseK2[size_t(k)]);
+                                w[size_t(x)] =
+                                    patchWeight(distance[size_t(first + x)] * inverseK2[size_t(k)]);
                             accumulateRow(sums.data() + size_t(k) * candidateSums + size_t(first),
                                           w.data(), row);
                         }

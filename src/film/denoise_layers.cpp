@@ -2,7 +2,9 @@
 
 namespace strahl {
 
-std::string halfLayerName(int half) { return half == 0 ? "half0" : "half1"; }
+std::string halfLayerName(int half) {
+    return half == 0 ? "half0" : "half1";
+}
 
 std::vector<std::string> halfLayerChannels(int half) {
     const std::string layer = halfLayerName(half);

@@ -48,8 +48,8 @@ void expectSameChannels(const test::ExrFile& a, const test::ExrFile& b,
         for (float v : x) largest = std::max(largest, std::abs(v));
         size_t differing = 0;
         for (size_t i = 0; i < x.size(); ++i)
-            differing += tolerance == 0.0f ? x[i] != y[i]
-                                           : std::abs(x[i] - y[i]) > tolerance * largest;
+            differing +=
+                tolerance == 0.0f ? x[i] != y[i] : std::abs(x[i] - y[i]) > tolerance * largest;
         EXPECT_EQ(differing, 0u) << what << ": channel " << name;
     }
 }
@@ -102,8 +102,8 @@ TEST_F(DenoiseCli, TheDenoiseCommandGivesTheRendersImage) {
 }
 
 TEST_F(DenoiseCli, IsTheSameForAnyThreadCount) {
-    const test::RunResult r = runStrahl("render " + kScene + kFlags + kSpp + " --denoise --threads 1 -o " +
-                                        path("one-thread.exr"));
+    const test::RunResult r = runStrahl("render " + kScene + kFlags + kSpp +
+                                        " --denoise --threads 1 -o " + path("one-thread.exr"));
     ASSERT_EQ(r.status, 0) << r.err;
     test::expectIdentical(test::readExr(path("denoised.exr")),
                           test::readExr(path("one-thread.exr")), "1 thread vs all");
@@ -117,10 +117,10 @@ TEST_F(DenoiseCli, MergedPartsDenoiseToTheSingleRender) {
                                             " --denoise -o " + path(name + ".exr"));
         ASSERT_EQ(r.status, 0) << name << ": " << r.err;
     }
-    ASSERT_EQ(runStrahl("merge " + path("p0.exr") + " " + path("p1.exr") + " -q -o " +
-                        path("merged.exr"))
-                  .status,
-              0);
+    ASSERT_EQ(
+        runStrahl("merge " + path("p0.exr") + " " + path("p1.exr") + " -q -o " + path("merged.exr"))
+            .status,
+        0);
     const test::RunResult r =
         runStrahl("denoise " + path("merged.exr") + " -q -o " + path("merged-denoised.exr"));
     ASSERT_EQ(r.status, 0) << r.err;
@@ -153,9 +153,9 @@ TEST_F(DenoiseCli, ACheckpointedRenderResumesAndDenoisesAtTheEnd) {
     // Stopped after the first pass (one sample: not denoised, a note says
     // so), then resumed: the image of the uninterrupted render.
     const std::string checkpoint = path("d.ckpt");
-    test::RunResult r = runStrahl("render " + kScene + kFlags + kSpp +
-                                  " --denoise --time-limit 0 --checkpoint " + checkpoint + " -o " +
-                                  path("cut.exr"));
+    test::RunResult r =
+        runStrahl("render " + kScene + kFlags + kSpp + " --denoise --time-limit 0 --checkpoint " +
+                  checkpoint + " -o " + path("cut.exr"));
     ASSERT_EQ(r.status, 0) << r.err;
     r = runStrahl("render " + kScene + kFlags + kSpp + " --denoise --resume " + checkpoint +
                   " -o " + path("resumed.exr"));
@@ -174,18 +174,19 @@ void expectRefused(const test::RunResult& r, const std::string& needle, const fs
 
 TEST_F(DenoiseCli, BadInputIsOneClearError) {
     // An EXR without the layers: rendered without --denoise.
-    ASSERT_EQ(runStrahl("render " + kScene + kFlags + kSpp + " --aov variance -o " + path("plain.exr"))
-                  .status,
-              0);
+    ASSERT_EQ(
+        runStrahl("render " + kScene + kFlags + kSpp + " --aov variance -o " + path("plain.exr"))
+            .status,
+        0);
     expectRefused(runStrahl("denoise " + path("plain.exr") + " -o " + path("out.exr")),
                   "lacks the denoiser's layers half0, half1", path("out.exr"));
     expectRefused(runStrahl("denoise " + path("missing.exr") + " -o " + path("out.exr")),
                   "missing.exr: no such file", path("out.exr"));
     expectRefused(runStrahl("denoise " + path("denoised.png") + " -o " + path("out.exr")),
                   "not an OpenEXR image", path("out.exr"));
-    expectRefused(runStrahl("render " + kScene + kFlags + " --spp 1 --denoise -o " +
-                            path("one.exr")),
-                  "at least 2 samples per pixel", path("one.exr"));
+    expectRefused(
+        runStrahl("render " + kScene + kFlags + " --spp 1 --denoise -o " + path("one.exr")),
+        "at least 2 samples per pixel", path("one.exr"));
     expectRefused(runStrahl("render " + kScene + kFlags +
                             " --denoise --algorithm raster --integrator eyelight --spp 1 -o " +
                             path("raster.exr")),

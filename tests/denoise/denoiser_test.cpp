@@ -7,12 +7,12 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <random>
-#include <bit>
-#include <cstdint>
 
 #include "strahl/core/error.h"
 
@@ -52,7 +52,9 @@ DenoiseInput makeInput(const Scene& scene, float sigma, uint32_t seed = 1) {
     return in;
 }
 
-float truth(const Scene& scene, int x, int y) { return scene.radiance(x, y); }
+float truth(const Scene& scene, int x, int y) {
+    return scene.radiance(x, y);
+}
 
 double meanSquaredError(const std::vector<float>& image, const Scene& scene) {
     double sum = 0.0;
@@ -156,7 +158,8 @@ TEST(Denoiser, MissesWithInfiniteDepthAreFine) {
     DenoiseInput in = makeInput(scene, 0.05f);
     for (DenoiseHalf& half : in.halves)
         for (int y = 0; y < kSize; ++y)
-            for (int x = 0; x < 24; ++x) half.depth[size_t(y * kSize + x)] = std::numeric_limits<float>::infinity();
+            for (int x = 0; x < 24; ++x)
+                half.depth[size_t(y * kSize + x)] = std::numeric_limits<float>::infinity();
     const std::vector<float> out = denoise(in);
     for (float v : out) ASSERT_TRUE(std::isfinite(v));
 }
