@@ -20,6 +20,7 @@
 #include <system_error>
 #include <vector>
 
+#include "image_files.h"
 #include "strahl/core/error.h"
 #include "strahl/core/pixel_rect.h"
 #include "strahl/film/image_output.h"
@@ -252,14 +253,7 @@ int runAssemble(const AssembleOptions& o) {
     // The render time of the whole image: the regions' times added up.
     if (first.spec.find_attribute("strahl:renderTime"))
         spec.attribute("strahl:renderTime", renderSeconds);
-    writeFileAtomically(output, [&](const fs::path& temp) {
-        std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create("openexr");
-        if (!out) return OIIO::geterror();
-        if (!out->open(temp.string(), spec) ||
-            !out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) || !out->close())
-            return out->geterror();
-        return std::string();
-    });
+    writeExrFile(output, spec, pixels);
     if (!o.quiet)
         std::fprintf(stderr, "assembled %zu regions into %s (%dx%d%s)\n", regions.size(),
                      o.output.c_str(), full.width(), full.height(), partial ? ", partial" : "");

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <map>
 
+#include "image_files.h"
 #include "strahl/core/error.h"
 #include "strahl/denoise/denoiser.h"
 #include "strahl/film/denoise_layers.h"
@@ -144,14 +145,7 @@ void writeDenoisedExr(const ExrImage& image, const std::vector<float>& denoised,
         for (size_t c = 0; c < 3; ++c) out[c] = denoised[3 * i + c];
         for (size_t k = 0; k < from.size(); ++k) out[3 + k] = image.pixels[i * inStride + from[k]];
     }
-    writeFileAtomically(file, [&](const fs::path& temp) {
-        std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create("openexr");
-        if (!out) return OIIO::geterror();
-        if (!out->open(temp.string(), spec) ||
-            !out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) || !out->close())
-            return out->geterror();
-        return std::string();
-    });
+    writeExrFile(file, spec, pixels);
 }
 
 }  // namespace
@@ -167,10 +161,7 @@ CLI::App* addDenoiseCommand(CLI::App& app, DenoiseOptions& o) {
         ->required();
     cmd->add_option("--threads", o.threads, "Worker threads; 0 = all cores (default)")
         ->check(CLI::Range(0, 4096));
-    cmd->add_option("--ocio-config", o.color.configFile,
-                    "OpenColorIO config for display outputs (default: $OCIO, else built-in)");
-    cmd->add_option("--display", o.color.display, "OCIO display (built-in: sRGB)");
-    cmd->add_option("--view", o.color.view, "OCIO view (built-in: Standard, Filmic, Raw)");
+    addDisplayOptions(*cmd, o.color);
     cmd->add_flag("-q,--quiet", o.quiet, "No lines saying what was written");
     return cmd;
 }

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "image_files.h"
 #include "strahl/core/error.h"
 #include "strahl/film/exact_part.h"
 #include "strahl/film/exr_input.h"
@@ -106,10 +107,7 @@ CLI::App* addMergeCommand(CLI::App& app, MergeOptions& o) {
                       "the exact sums (so merges can be merged); .png/.jpg/.tif: the beauty "
                       "through the OCIO display transform")
         ->required();
-    merge->add_option("--ocio-config", o.color.configFile,
-                      "OpenColorIO config for display outputs (default: $OCIO, else built-in)");
-    merge->add_option("--display", o.color.display, "OCIO display (built-in: sRGB)");
-    merge->add_option("--view", o.color.view, "OCIO view (built-in: Standard, Filmic, Raw)");
+    addDisplayOptions(*merge, o.color);
     merge->add_flag("-q,--quiet", o.quiet, "No summary line and no warnings");
     return merge;
 }

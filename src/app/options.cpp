@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "image_files.h"
 #include "strahl/job/frame_pattern.h"
 #include "strahl/core/error.h"
 #include "strahl/core/process_memory.h"
@@ -277,10 +278,7 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
                        "Write the run's statistics (settings, timings, rays, peak memory, "
                        "outputs, exit status) to this JSON file at the end, also after an "
                        "interrupt or a time limit");
-    render->add_option("--ocio-config", o.color.configFile,
-                       "OpenColorIO config for display outputs (default: $OCIO, else built-in)");
-    render->add_option("--display", o.color.display, "OCIO display (built-in: sRGB)");
-    render->add_option("--view", o.color.view, "OCIO view (built-in: Standard, Filmic, Raw)");
+    addDisplayOptions(*render, o.color);
 
     CLI::App* info = app.add_subcommand("info", "Print primitive counts, bounds and memory");
     info->add_option("scene", o.scene, "Scene file")->required();

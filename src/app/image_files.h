@@ -1,0 +1,28 @@
+#pragma once
+// What the commands that write images share: the display-transform options
+// (render, merge, denoise) and writing a whole float EXR under a temporary
+// name (assemble, denoise).
+
+#include <OpenImageIO/imageio.h>
+
+#include <filesystem>
+#include <vector>
+
+#include "strahl/film/display_transform.h"
+
+namespace CLI {
+class App;
+}
+
+namespace strahl::app {
+
+// --ocio-config, --display and --view into `color`.
+void addDisplayOptions(CLI::App& command, ColorSettings& color);
+
+// Writes `pixels` (interleaved float, spec's size and channels; OpenImageIO
+// converts them to the spec's channel formats) as OpenEXR, atomically
+// (film/image_output.h writeFileAtomically): no partial file on failure.
+void writeExrFile(const std::filesystem::path& file, const OIIO::ImageSpec& spec,
+                  const std::vector<float>& pixels);
+
+}  // namespace strahl::app
