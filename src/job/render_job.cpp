@@ -163,6 +163,7 @@ RunReport makeReport(const RenderJob& job, const SceneDesc& desc, const PixelRec
     r.loadSeconds = result.timings.loadSeconds;
     r.bvhSeconds = result.timings.bvhSeconds;
     r.renderSeconds = stats.seconds;
+    r.denoiseSeconds = result.denoiseSeconds;
     r.firstPixelSeconds =
         result.timings.loadSeconds + result.timings.bvhSeconds + stats.firstTileSeconds;
     r.cameraRays = stats.cameraRays;

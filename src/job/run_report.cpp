@@ -49,6 +49,7 @@ nlohmann::ordered_json statsJson(const RunReport& r) {
                     {"bvh", roundSeconds(r.bvhSeconds)},
                     {"render", roundSeconds(r.renderSeconds)},
                     {"first_pixel", roundSeconds(r.firstPixelSeconds)},
+                    {"denoise", roundSeconds(r.denoiseSeconds)},
                     {"total", roundSeconds(r.totalSeconds)}};
     const uint64_t rays = r.cameraRays + r.shadowRays + r.bounceRays;
     j["rays"] = {{"total", rays},

@@ -502,7 +502,7 @@ TEST(FarmStats, TheStatsFileHasEveryDocumentedField) {
     EXPECT_EQ(s["accel"], "embree");
     EXPECT_EQ(s["samples"], json({{"begin", 0}, {"end", 4}, {"done", 4}}));
     EXPECT_EQ(s["threads"], 2);
-    for (const char* key : {"load", "bvh", "render", "first_pixel", "total"})
+    for (const char* key : {"load", "bvh", "render", "first_pixel", "denoise", "total"})
         EXPECT_GE(s["timings"][key].get<double>(), 0.0) << key;
     EXPECT_GE(s["timings"]["total"].get<double>(), s["timings"]["render"].get<double>());
     const json& rays = s["rays"];

@@ -28,6 +28,7 @@ struct RunReport {
     int threads = 0;                     // worker threads actually used
     double loadSeconds = 0, bvhSeconds = 0, renderSeconds = 0, firstPixelSeconds = 0,
            totalSeconds = 0;
+    double denoiseSeconds = 0;  // render.denoise: the denoiser's time (0: not denoised)
     uint64_t cameraRays = 0, shadowRays = 0, bounceRays = 0;
     size_t peakResidentBytes = 0;
     std::vector<std::string> outputs;
