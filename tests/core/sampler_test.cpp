@@ -27,6 +27,30 @@ TEST(Sampler, SecondSobolDimensionMatchesTheKnownSequence) {
         EXPECT_EQ(sobol::toUnitFloat(sobol::dimension1(i)), expected[i]) << i;
 }
 
+TEST(Sampler, TableDrivenSecondDimensionEqualsTheDefinition) {
+    // Every single bit (the matrix columns), then a spread of indices.
+    for (uint32_t bit = 0; bit < 32; ++bit)
+        EXPECT_EQ(sobol::dimension1(1u << bit), sobol::dimension1BitByBit(1u << bit)) << bit;
+    uint64_t state = 1;
+    for (int i = 0; i < 100000; ++i) {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        const auto index = static_cast<uint32_t>(state >> 32);
+        ASSERT_EQ(sobol::dimension1(index), sobol::dimension1BitByBit(index)) << index;
+    }
+}
+
+TEST(Sampler, ShortcutFirstDimensionScrambleEqualsTheDefinition) {
+    uint64_t state = 5;
+    for (int i = 0; i < 100000; ++i) {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        const auto index = static_cast<uint32_t>(state >> 32);
+        const auto seed = static_cast<uint32_t>(state);
+        ASSERT_EQ(sobol::scrambledDimension0(index, seed),
+                  sobol::nestedUniformScramble(sobol::dimension0(index), seed))
+            << index << " " << seed;
+    }
+}
+
 TEST(Sampler, EveryPairIsA02NetForPowersOfTwo) {
     // 2^m consecutive samples put exactly one point in every elementary
     // interval of area 2^-m, for every shape 2^a x 2^b with a + b = m.

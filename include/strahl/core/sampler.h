@@ -50,13 +50,45 @@ constexpr uint32_t nestedUniformScramble(uint32_t x, uint32_t seed) {
 // The first Sobol dimension: the van der Corput sequence (bit reversal).
 constexpr uint32_t dimension0(uint32_t index) { return reverseBits(index); }
 
+// nestedUniformScramble(dimension0(index), seed), with the two bit reversals
+// that cancel (reverseBits(reverseBits(i)) = i) left out.
+constexpr uint32_t scrambledDimension0(uint32_t index, uint32_t seed) {
+    return reverseBits(laineKarrasPermutation(index, seed));
+}
+
 // The second Sobol dimension: generator matrix = Pascal's triangle mod 2, whose
-// columns follow v_{k+1} = v_k ^ (v_k >> 1) from v_0 = 2^31.
-constexpr uint32_t dimension1(uint32_t index) {
+// columns follow v_{k+1} = v_k ^ (v_k >> 1) from v_0 = 2^31. This is the
+// definition, one column per set bit: the reference the table below is built
+// from and tested against.
+constexpr uint32_t dimension1BitByBit(uint32_t index) {
     uint32_t result = 0;
     for (uint32_t v = 1u << 31; index != 0; index >>= 1, v ^= v >> 1)
         if (index & 1u) result ^= v;
     return result;
+}
+
+// The matrix-vector product over GF(2) is linear in the index, so it splits
+// into the four bytes of the index: dimension1(i) = T[0][byte 0] ^ ... ^
+// T[3][byte 3], with T[k][b] = dimension1BitByBit(b << 8k). Four loads and
+// three XORs instead of a loop of up to 32 iterations with an unpredictable
+// branch each (the index is scrambled, so its bits are random): the loop was
+// the largest cost of eyelight rendering (issue 20). 4 KiB, built at compile
+// time; the values are identical bit for bit.
+struct Dimension1Table {
+    uint32_t byByte[4][256];
+};
+constexpr Dimension1Table makeDimension1Table() {
+    Dimension1Table t{};
+    for (uint32_t k = 0; k < 4; ++k)
+        for (uint32_t b = 0; b < 256; ++b) t.byByte[k][b] = dimension1BitByBit(b << (8 * k));
+    return t;
+}
+inline constexpr Dimension1Table kDimension1Table = makeDimension1Table();
+
+constexpr uint32_t dimension1(uint32_t index) {
+    const auto& t = kDimension1Table.byByte;
+    return t[0][index & 0xFFu] ^ t[1][(index >> 8) & 0xFFu] ^ t[2][(index >> 16) & 0xFFu] ^
+           t[3][index >> 24];
 }
 
 // A 32-bit fraction to a float in [0, 1): the top 24 bits, so 1 is never returned.
@@ -77,16 +109,15 @@ public:
     float get1D() {
         const uint64_t h = pairHash();
         const uint32_t i = shuffledIndex(h);
-        return sobol::toUnitFloat(
-            sobol::nestedUniformScramble(sobol::dimension0(i), static_cast<uint32_t>(h >> 32)));
+        return sobol::toUnitFloat(sobol::scrambledDimension0(i, static_cast<uint32_t>(h >> 32)));
     }
     // The next pair of dimensions.
     Vec2 get2D() {
         const uint64_t h = pairHash();
         const uint32_t i = shuffledIndex(h);
         const uint64_t h2 = mixBits(h ^ 0x5851F42D4C957F2DULL);
-        return Vec2(sobol::toUnitFloat(sobol::nestedUniformScramble(
-                        sobol::dimension0(i), static_cast<uint32_t>(h >> 32))),
+        return Vec2(sobol::toUnitFloat(
+                        sobol::scrambledDimension0(i, static_cast<uint32_t>(h >> 32))),
                     sobol::toUnitFloat(sobol::nestedUniformScramble(
                         sobol::dimension1(i), static_cast<uint32_t>(h2))));
     }
