@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
+
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -62,6 +64,25 @@ TEST(ExactSum, HoldsFloatsExactlyAndResolvesTheMean) {
     EXPECT_EQ(tiny.raw(), Int128(1));
     tiny.add(-0x1p-66f);
     EXPECT_EQ(tiny.raw(), Int128(1));
+}
+
+TEST(ExactSum, ConversionFromTheFloatBitsEqualsTheDefinition) {
+    const auto same = [](float x) {
+        ASSERT_TRUE(ExactSum::toFixed(x) == ExactSum::toFixedByDouble(x)) << x;
+    };
+    // Every exponent (subnormals, the values that shift out, the bound and
+    // beyond it, infinities, NaN) with the smallest, largest and a middle
+    // fraction, both signs.
+    for (uint32_t biased = 0; biased < 256; ++biased)
+        for (uint32_t fraction : {0u, 1u, 0x400001u, 0x7FFFFFu})
+            for (uint32_t sign : {0u, 1u})
+                same(std::bit_cast<float>((sign << 31) | (biased << 23) | fraction));
+    // Random bit patterns.
+    uint64_t state = 3;
+    for (int i = 0; i < 200000; ++i) {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        same(std::bit_cast<float>(static_cast<uint32_t>(state >> 32)));
+    }
 }
 
 TEST(ExactSum, ClampsHugeAndDropsNanSamples) {
