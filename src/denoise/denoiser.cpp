@@ -1,4 +1,6 @@
 // The NFOR pipeline (Bitterli et al. 2016; docs/denoising.md):
+//  0. fireflies: each half's colour is capped at a multiple of the other
+//     half's neighbourhood (limitOutliers; strahl's addition, biased);
 //  1. features: each of albedo, normal and depth is the mean of its two
 //     halves, prefiltered by NL-means with its own variance, estimated from
 //     the halves' difference;
@@ -102,6 +104,31 @@ PlanarImage boxFilter3(const PlanarImage& in) {
                 out.at(c, x, y) = sum / 9.0f;
             }
     return out;
+}
+
+// Fireflies: a value far above anything the other half shows near the pixel
+// is one rare sample, not the image. The regression would spread it over its
+// window (its weights come from the other half, which does not have it) into
+// a bright blob. Each half's value is limited, per channel, to `factor` times
+// the largest value of the other half in the 3 x 3 pixels around it (the
+// pixel included, so a highlight both halves see stays). Biased, as every
+// firefly filter is: the energy above the limit is lost.
+void limitOutliers(PlanarImage (&color)[2], float factor) {
+    const int W = color[0].width, H = color[0].height;
+    PlanarImage limited[2] = {color[0], color[1]};
+    for (int h = 0; h < 2; ++h)
+        for (int c = 0; c < 3; ++c)
+            for (int y = 0; y < H; ++y)
+                for (int x = 0; x < W; ++x) {
+                    float most = 0.0f;
+                    for (int j = std::max(0, y - 1); j <= std::min(H - 1, y + 1); ++j)
+                        for (int i = std::max(0, x - 1); i <= std::min(W - 1, x + 1); ++i)
+                            most = std::max(most, color[1 - h].at(c, i, j));
+                    float& v = limited[h].at(c, x, y);
+                    v = std::min(v, factor * most);
+                }
+    color[0] = std::move(limited[0]);
+    color[1] = std::move(limited[1]);
 }
 
 // Step 1: the prefiltered features shared by both halves' regressions.
@@ -225,10 +252,11 @@ void checkDenoiseInput(const DenoiseInput& input, const std::string& source) {
 std::vector<float> denoise(const DenoiseInput& input, const DenoiseSettings& settings,
                            const std::string& source) {
     checkDenoiseInput(input, source);
-    if (settings.windowRadius < 1 || settings.patchRadius < 0 || settings.bandwidths.empty())
+    if (settings.windowRadius < 1 || settings.patchRadius < 0 || settings.bandwidths.empty() ||
+        !(settings.outlierFactor >= 0.0f))
         fail(source,
-             ": denoiser settings need a window radius >= 1, a patch radius >= 0 and a "
-             "bandwidth");
+             ": denoiser settings need a window radius >= 1, a patch radius >= 0, a "
+             "bandwidth and an outlier factor >= 0");
     const int W = input.width, H = input.height;
 
     std::vector<float> result;
@@ -242,8 +270,9 @@ std::vector<float> denoise(const DenoiseInput& input, const DenoiseSettings& set
             prefilterFeatures(featurePlanes(input.halves[0], W, H, maxDepth),
                               featurePlanes(input.halves[1], W, H, maxDepth));
 
-        const PlanarImage color[2] = {toPlanar(input.halves[0].color, W, H, 3),
-                                      toPlanar(input.halves[1].color, W, H, 3)};
+        PlanarImage color[2] = {toPlanar(input.halves[0].color, W, H, 3),
+                                toPlanar(input.halves[1].color, W, H, 3)};
+        if (settings.outlierFactor > 0.0f) limitOutliers(color, settings.outlierFactor);
         // Each half holds about half the samples: twice the variance of the full mean.
         PlanarImage fullVariance = toPlanar(input.variance, W, H, 3);
         PlanarImage halfVariance = fullVariance;

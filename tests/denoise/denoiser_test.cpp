@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -136,6 +137,43 @@ TEST(Denoiser, KeepsTheMeanOfAFlatRegion) {
     const double mean = sum / double(out.size());
     // The noisy mean over 48 x 48 x 3 values has standard error 0.5 / sqrt(2 * 6912) = 0.004.
     EXPECT_NEAR(mean, 2.0, 0.015);
+}
+
+// The largest |out - truth| over the image, over all channels.
+float largestError(const std::vector<float>& image, const Scene& scene) {
+    float worst = 0.0f;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x)
+            for (int c = 0; c < 3; ++c)
+                worst = std::max(worst, std::abs(image[3 * size_t(y * kSize + x) + size_t(c)] -
+                                                 truth(scene, x, y)));
+    return worst;
+}
+
+TEST(Denoiser, ALoneFireflyIsNotSpreadIntoABlob) {
+    // One sample of one half carried 1000 times the light (a path that found
+    // a caustic): the half's mean at that pixel is 500 over a flat 0.5.
+    const Scene scene{[](int, int) { return 0.5f; }};
+    DenoiseInput in = makeInput(scene, 0.02f, 3);
+    const size_t firefly = 3 * size_t(24 * kSize + 24);
+    for (int c = 0; c < 3; ++c) in.halves[0].color[firefly + size_t(c)] = 500.0f;
+    // Unlimited, the regression spreads it over its window (the weights come
+    // from the other half, which does not have it): what the limit is for.
+    DenoiseSettings unlimited;
+    unlimited.outlierFactor = 0.0f;
+    EXPECT_GT(largestError(denoise(in, unlimited), scene), 1.0f);
+    // Limited to 4 x the other half's neighbourhood (about 2.1 here): the
+    // image stays within a few noise deviations of the truth everywhere.
+    EXPECT_LT(largestError(denoise(in), scene), 0.1f);
+}
+
+TEST(Denoiser, KeepsAHighlightBothHalvesSee) {
+    // A one-pixel highlight of 20 in both halves is image, not noise: the
+    // limit does not touch it and the filter keeps it.
+    const Scene scene{[](int x, int y) { return x == 24 && y == 24 ? 20.0f : 0.5f; }};
+    const std::vector<float> out = denoise(makeInput(scene, 0.02f, 4));
+    EXPECT_GT(out[3 * size_t(24 * kSize + 24)], 19.5f);
+    EXPECT_LT(largestError(out, scene), 0.1f);
 }
 
 TEST(Denoiser, IsIdenticalForAnyThreadCount) {
