@@ -10,7 +10,9 @@
 //     noise they average, which would otherwise survive the filter);
 //  3. each candidate's error is estimated per pixel against the other half,
 //     the estimates are smoothed, and each pixel takes the candidates in
-//     the proportions a smoothed "which is best" map gives.
+//     the proportions a smoothed "which is best" map gives;
+//  4. the result is kept within a few standard errors of each pixel's own
+//     mean (limitToStandardErrors; strahl's addition).
 
 #include "strahl/denoise/denoiser.h"
 
@@ -129,6 +131,45 @@ void limitOutliers(PlanarImage (&color)[2], float factor) {
                 }
     color[0] = std::move(limited[0]);
     color[1] = std::move(limited[1]);
+}
+
+// The variance the consistency limit allows for: per channel, the larger of
+// the pixel's own variance and the median of its 3 x 3 neighbourhood's. The
+// median stands in where a pixel's few samples happened to agree (variance 0
+// in a noisy region) and, unlike a mean, ignores a bright neighbour's huge
+// variance.
+PlanarImage robustVariance(const PlanarImage& variance) {
+    PlanarImage out(variance.width, variance.height, variance.channels);
+    const int W = variance.width, H = variance.height;
+    for (int c = 0; c < variance.channels; ++c)
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                float around[9];
+                int n = 0;
+                for (int j = std::max(0, y - 1); j <= std::min(H - 1, y + 1); ++j)
+                    for (int i = std::max(0, x - 1); i <= std::min(W - 1, x + 1); ++i)
+                        around[n++] = variance.at(c, i, j);
+                std::nth_element(around, around + n / 2, around + n);
+                out.at(c, x, y) = std::max(around[n / 2], variance.at(c, x, y));
+            }
+    return out;
+}
+
+// Consistency limit: the denoised value stays within `k` standard errors of
+// the pixel's own mean, sigma = sqrt(robustVariance). Removing noise moves a
+// pixel by about one standard error; a first-order fit can move it by far
+// more where a neighbour it averaged with is much brighter and the features
+// do not tell them apart (the small lamps seen through the DamagedHelmet's
+// visor came out as bright crosses, 100 times too bright: such a value is
+// not consistent with the pixel's own samples, so it is not kept).
+void limitToStandardErrors(PlanarImage& denoised, const PlanarImage& mean,
+                           const PlanarImage& variance, float k) {
+    const PlanarImage robust = robustVariance(variance);
+    for (size_t i = 0; i < denoised.data.size(); ++i) {
+        const float tolerance = k * std::sqrt(robust.data[i]);
+        denoised.data[i] =
+            std::clamp(denoised.data[i], mean.data[i] - tolerance, mean.data[i] + tolerance);
+    }
 }
 
 // Step 1: the prefiltered features shared by both halves' regressions.
@@ -253,10 +294,10 @@ std::vector<float> denoise(const DenoiseInput& input, const DenoiseSettings& set
                            const std::string& source) {
     checkDenoiseInput(input, source);
     if (settings.windowRadius < 1 || settings.patchRadius < 0 || settings.bandwidths.empty() ||
-        !(settings.outlierFactor >= 0.0f))
+        !(settings.outlierFactor >= 0.0f) || !(settings.maxStandardErrors >= 0.0f))
         fail(source,
              ": denoiser settings need a window radius >= 1, a patch radius >= 0, a "
-             "bandwidth and an outlier factor >= 0");
+             "bandwidth, and an outlier factor and a standard-error limit >= 0");
     const int W = input.width, H = input.height;
 
     std::vector<float> result;
@@ -284,6 +325,8 @@ std::vector<float> denoise(const DenoiseInput& input, const DenoiseSettings& set
         // Weights from the other half's noisy colour (cross-filtering).
         FilterPass pass = filterPass(color, halfVariance, color, halfVariance, mean, fullVariance,
                                      features, settings);
+        if (settings.maxStandardErrors > 0.0f)
+            limitToStandardErrors(pass.combined, mean, fullVariance, settings.maxStandardErrors);
         // A first-order fit may dip below 0 in dark regions; radiance cannot.
         for (float& v : pass.combined.data) v = std::max(v, 0.0f);
         result = toInterleaved(pass.combined);

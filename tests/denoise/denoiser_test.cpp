@@ -151,16 +151,21 @@ float largestError(const std::vector<float>& image, const Scene& scene) {
 }
 
 TEST(Denoiser, ALoneFireflyIsNotSpreadIntoABlob) {
-    // One sample of one half carried 1000 times the light (a path that found
-    // a caustic): the half's mean at that pixel is 500 over a flat 0.5.
+    // One of 16 samples carried 4000 (a path that found a caustic): the mean
+    // of its half (8 samples) is 500 over a flat 0.5, and the variance of the
+    // pixel's mean is about 4000^2 / 16 / 16 = 62500, as the film measures it.
     const Scene scene{[](int, int) { return 0.5f; }};
     DenoiseInput in = makeInput(scene, 0.02f, 3);
     const size_t firefly = 3 * size_t(24 * kSize + 24);
-    for (int c = 0; c < 3; ++c) in.halves[0].color[firefly + size_t(c)] = 500.0f;
+    for (int c = 0; c < 3; ++c) {
+        in.halves[0].color[firefly + size_t(c)] = 500.0f;
+        in.variance[firefly + size_t(c)] = 62500.0f;
+    }
     // Unlimited, the regression spreads it over its window (the weights come
     // from the other half, which does not have it): what the limit is for.
     DenoiseSettings unlimited;
     unlimited.outlierFactor = 0.0f;
+    unlimited.maxStandardErrors = 0.0f;
     EXPECT_GT(largestError(denoise(in, unlimited), scene), 1.0f);
     // Limited to 4 x the other half's neighbourhood (about 2.1 here): the
     // image stays within a few noise deviations of the truth everywhere.
@@ -174,6 +179,39 @@ TEST(Denoiser, KeepsAHighlightBothHalvesSee) {
     const std::vector<float> out = denoise(makeInput(scene, 0.02f, 4));
     EXPECT_GT(out[3 * size_t(24 * kSize + 24)], 19.5f);
     EXPECT_LT(largestError(out, scene), 0.1f);
+}
+
+TEST(Denoiser, KeepsEveryPixelWithinThreeStandardErrorsOfItsMean) {
+    // Small noisy lamps (50, variance 25, as a light seen through glass is)
+    // on a dim, nearly noise-free background: NL-means weights count a
+    // high-variance pixel as similar to anything, so unlimited, the lamps
+    // bleed into their neighbours (by over 4 standard errors here; by 100
+    // times the true value next to the DamagedHelmet's lamps).
+    const auto lamp = [](int x, int y) { return x % 12 == 6 && y % 12 == 6; };
+    const Scene scene{[&](int x, int y) { return lamp(x, y) ? 50.0f : 0.1f; }};
+    DenoiseInput in = makeInput(scene, 0.01f, 5);
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x)
+            if (lamp(x, y))
+                for (int c = 0; c < 3; ++c) in.variance[3 * size_t(y * kSize + x) + size_t(c)] = 25.0f;
+    const std::vector<float> mean = noisyMean(in);
+    // How far each pixel moved, in its standard errors (sqrt of the larger
+    // of its variance and the 3 x 3 median, here the background's).
+    const auto worstMove = [&](const std::vector<float>& out) {
+        float worst = 0.0f;
+        for (int y = 0; y < kSize; ++y)
+            for (int x = 0; x < kSize; ++x)
+                for (int c = 0; c < 3; ++c) {
+                    const size_t i = 3 * size_t(y * kSize + x) + size_t(c);
+                    worst = std::max(worst, std::abs(out[i] - mean[i]) / std::sqrt(in.variance[i]));
+                }
+        return worst;
+    };
+    DenoiseSettings unlimited;
+    unlimited.maxStandardErrors = 0.0f;
+    EXPECT_GT(worstMove(denoise(in, unlimited)), 3.5f);
+    EXPECT_LE(worstMove(denoise(in)), 3.0f + 1e-3f);
+    EXPECT_LT(largestError(denoise(in), scene), 0.1f);
 }
 
 TEST(Denoiser, IsIdenticalForAnyThreadCount) {
