@@ -108,6 +108,14 @@ PlanarImage boxFilter3(const PlanarImage& in) {
     return out;
 }
 
+// Calls visit(i, j) for the pixels of the 3 x 3 block around (x, y) that
+// lie inside the image.
+template <class Visit>
+void forEach3x3(int x, int y, int width, int height, Visit&& visit) {
+    for (int j = std::max(0, y - 1); j <= std::min(height - 1, y + 1); ++j)
+        for (int i = std::max(0, x - 1); i <= std::min(width - 1, x + 1); ++i) visit(i, j);
+}
+
 // Fireflies: a value far above anything the other half shows near the pixel
 // is one rare sample, not the image. The regression would spread it over its
 // window (its weights come from the other half, which does not have it) into
@@ -123,9 +131,9 @@ void limitOutliers(PlanarImage (&color)[2], float factor) {
             for (int y = 0; y < H; ++y)
                 for (int x = 0; x < W; ++x) {
                     float most = 0.0f;
-                    for (int j = std::max(0, y - 1); j <= std::min(H - 1, y + 1); ++j)
-                        for (int i = std::max(0, x - 1); i <= std::min(W - 1, x + 1); ++i)
-                            most = std::max(most, color[1 - h].at(c, i, j));
+                    forEach3x3(x, y, W, H, [&](int i, int j) {
+                        most = std::max(most, color[1 - h].at(c, i, j));
+                    });
                     float& v = limited[h].at(c, x, y);
                     v = std::min(v, factor * most);
                 }
@@ -146,9 +154,7 @@ PlanarImage robustVariance(const PlanarImage& variance) {
             for (int x = 0; x < W; ++x) {
                 float around[9];
                 int n = 0;
-                for (int j = std::max(0, y - 1); j <= std::min(H - 1, y + 1); ++j)
-                    for (int i = std::max(0, x - 1); i <= std::min(W - 1, x + 1); ++i)
-                        around[n++] = variance.at(c, i, j);
+                forEach3x3(x, y, W, H, [&](int i, int j) { around[n++] = variance.at(c, i, j); });
                 std::nth_element(around, around + n / 2, around + n);
                 out.at(c, x, y) = std::max(around[n / 2], variance.at(c, x, y));
             }

@@ -193,7 +193,8 @@ TEST(Denoiser, KeepsEveryPixelWithinThreeStandardErrorsOfItsMean) {
     for (int y = 0; y < kSize; ++y)
         for (int x = 0; x < kSize; ++x)
             if (lamp(x, y))
-                for (int c = 0; c < 3; ++c) in.variance[3 * size_t(y * kSize + x) + size_t(c)] = 25.0f;
+                for (int c = 0; c < 3; ++c)
+                    in.variance[3 * size_t(y * kSize + x) + size_t(c)] = 25.0f;
     const std::vector<float> mean = noisyMean(in);
     // How far each pixel moved, in its standard errors (sqrt of the larger
     // of its variance and the 3 x 3 median, here the background's).
