@@ -13,6 +13,8 @@
 //     the proportions a smoothed "which is best" map gives;
 //  4. the result is kept within a few standard errors of each pixel's own
 //     mean (limitToStandardErrors; strahl's addition).
+// Every step that reads the colour variance reads robustVariance: the
+// variance AOV smoothed over the neighbourhood without its largest values.
 
 #include "strahl/denoise/denoiser.h"
 
@@ -108,12 +110,12 @@ PlanarImage boxFilter3(const PlanarImage& in) {
     return out;
 }
 
-// Calls visit(i, j) for the pixels of the 3 x 3 block around (x, y) that
-// lie inside the image.
+// Calls visit(i, j) for the pixels of the (2r+1) x (2r+1) block around
+// (x, y) that lie inside the image.
 template <class Visit>
-void forEach3x3(int x, int y, int width, int height, Visit&& visit) {
-    for (int j = std::max(0, y - 1); j <= std::min(height - 1, y + 1); ++j)
-        for (int i = std::max(0, x - 1); i <= std::min(width - 1, x + 1); ++i) visit(i, j);
+void forEachAround(int x, int y, int r, int width, int height, Visit&& visit) {
+    for (int j = std::max(0, y - r); j <= std::min(height - 1, y + r); ++j)
+        for (int i = std::max(0, x - r); i <= std::min(width - 1, x + r); ++i) visit(i, j);
 }
 
 // Fireflies: a value far above anything the other half shows near the pixel
@@ -131,7 +133,7 @@ void limitOutliers(PlanarImage (&color)[2], float factor) {
             for (int y = 0; y < H; ++y)
                 for (int x = 0; x < W; ++x) {
                     float most = 0.0f;
-                    forEach3x3(x, y, W, H, [&](int i, int j) {
+                    forEachAround(x, y, 1, W, H, [&](int i, int j) {
                         most = std::max(most, color[1 - h].at(c, i, j));
                     });
                     float& v = limited[h].at(c, x, y);
@@ -141,28 +143,43 @@ void limitOutliers(PlanarImage (&color)[2], float factor) {
     color[1] = std::move(limited[1]);
 }
 
-// The variance the consistency limit allows for: per channel, the larger of
-// the pixel's own variance and the median of its 3 x 3 neighbourhood's. The
-// median stands in where a pixel's few samples happened to agree (variance 0
-// in a noisy region) and, unlike a mean, ignores a bright neighbour's huge
-// variance.
+// The variance the filter works with: per channel, the larger of the pixel's
+// own variance and the mean of its 5 x 5 neighbourhood's without the largest
+// quarter (6 of 25). A pixel's variance from 16 samples is itself noisy:
+//  - where light arrives through rare paths (Sponza's arcades), most pixels
+//    saw none and report variance 0; the weights then find bright-sampled
+//    pixels unlike everything and darken the region, and a consistency limit
+//    (below) would keep those pixels black. The neighbourhood mean is the
+//    region's variance;
+//  - a small noisy lamp (the DamagedHelmet's visor) has a variance thousands
+//    of times its neighbours'; dropping the largest values keeps it out of
+//    the neighbours' estimates, where a plain mean would let them be pulled
+//    up to the lamp.
+// The quarter was chosen by measurement (docs/denoising.md): dropping 4
+// still let the lamps through, dropping 8 or a median (half) left Sponza's
+// unlit pixels black.
 PlanarImage robustVariance(const PlanarImage& variance) {
+    constexpr int kRadius = 2;
     PlanarImage out(variance.width, variance.height, variance.channels);
     const int W = variance.width, H = variance.height;
     for (int c = 0; c < variance.channels; ++c)
         for (int y = 0; y < H; ++y)
             for (int x = 0; x < W; ++x) {
-                float around[9];
+                float around[(2 * kRadius + 1) * (2 * kRadius + 1)];
                 int n = 0;
-                forEach3x3(x, y, W, H, [&](int i, int j) { around[n++] = variance.at(c, i, j); });
-                std::nth_element(around, around + n / 2, around + n);
-                out.at(c, x, y) = std::max(around[n / 2], variance.at(c, x, y));
+                forEachAround(x, y, kRadius, W, H,
+                              [&](int i, int j) { around[n++] = variance.at(c, i, j); });
+                const int kept = n - n / 4;
+                std::nth_element(around, around + kept, around + n);
+                double sum = 0.0;
+                for (int k = 0; k < kept; ++k) sum += around[k];
+                out.at(c, x, y) = std::max(float(sum / kept), variance.at(c, x, y));
             }
     return out;
 }
 
 // Consistency limit: the denoised value stays within `k` standard errors of
-// the pixel's own mean, sigma = sqrt(robustVariance). Removing noise moves a
+// the pixel's own mean, sigma = sqrt(variance) (the robust variance). Removing noise moves a
 // pixel by about one standard error; a first-order fit can move it by far
 // more where a neighbour it averaged with is much brighter and the features
 // do not tell them apart (the small lamps seen through the DamagedHelmet's
@@ -170,9 +187,8 @@ PlanarImage robustVariance(const PlanarImage& variance) {
 // not consistent with the pixel's own samples, so it is not kept).
 void limitToStandardErrors(PlanarImage& denoised, const PlanarImage& mean,
                            const PlanarImage& variance, float k) {
-    const PlanarImage robust = robustVariance(variance);
     for (size_t i = 0; i < denoised.data.size(); ++i) {
-        const float tolerance = k * std::sqrt(robust.data[i]);
+        const float tolerance = k * std::sqrt(variance.data[i]);
         denoised.data[i] =
             std::clamp(denoised.data[i], mean.data[i] - tolerance, mean.data[i] + tolerance);
     }
@@ -321,7 +337,7 @@ std::vector<float> denoise(const DenoiseInput& input, const DenoiseSettings& set
                                 toPlanar(input.halves[1].color, W, H, 3)};
         if (settings.outlierFactor > 0.0f) limitOutliers(color, settings.outlierFactor);
         // Each half holds about half the samples: twice the variance of the full mean.
-        PlanarImage fullVariance = toPlanar(input.variance, W, H, 3);
+        const PlanarImage fullVariance = robustVariance(toPlanar(input.variance, W, H, 3));
         PlanarImage halfVariance = fullVariance;
         for (float& v : halfVariance.data) v *= 2.0f;
         PlanarImage mean(W, H, 3);

@@ -197,7 +197,8 @@ TEST(Denoiser, KeepsEveryPixelWithinThreeStandardErrorsOfItsMean) {
                     in.variance[3 * size_t(y * kSize + x) + size_t(c)] = 25.0f;
     const std::vector<float> mean = noisyMean(in);
     // How far each pixel moved, in its standard errors (sqrt of the larger
-    // of its variance and the 3 x 3 median, here the background's).
+    // of its variance and its neighbourhood's without the lamps, here the
+    // background's).
     const auto worstMove = [&](const std::vector<float>& out) {
         float worst = 0.0f;
         for (int y = 0; y < kSize; ++y)
