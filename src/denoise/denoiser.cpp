@@ -18,6 +18,8 @@
 
 #include "strahl/denoise/denoiser.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -94,11 +96,21 @@ PlanarImage featurePlanes(const DenoiseHalf& half, int width, int height, float 
     return f;
 }
 
+// Calls row(y) for every y in [0, height), rows in parallel: for the
+// per-pixel steps, whose every output pixel depends only on the inputs (so
+// the result does not depend on the thread count).
+template <class Row>
+void forEachRow(int height, Row&& row) {
+    tbb::parallel_for(tbb::blocked_range<int>(0, height, 8), [&](const auto& range) {
+        for (int y = range.begin(); y != range.end(); ++y) row(y);
+    });
+}
+
 // 3 x 3 box mean with clamped borders.
 PlanarImage boxFilter3(const PlanarImage& in) {
     PlanarImage out(in.width, in.height, in.channels);
-    for (int c = 0; c < in.channels; ++c)
-        for (int y = 0; y < in.height; ++y)
+    forEachRow(in.height, [&](int y) {
+        for (int c = 0; c < in.channels; ++c)
             for (int x = 0; x < in.width; ++x) {
                 float sum = 0.0f;
                 for (int j = -1; j <= 1; ++j)
@@ -107,6 +119,7 @@ PlanarImage boxFilter3(const PlanarImage& in) {
                                      std::clamp(y + j, 0, in.height - 1));
                 out.at(c, x, y) = sum / 9.0f;
             }
+    });
     return out;
 }
 
@@ -128,9 +141,9 @@ void forEachAround(int x, int y, int r, int width, int height, Visit&& visit) {
 void limitOutliers(PlanarImage (&color)[2], float factor) {
     const int W = color[0].width, H = color[0].height;
     PlanarImage limited[2] = {color[0], color[1]};
-    for (int h = 0; h < 2; ++h)
-        for (int c = 0; c < 3; ++c)
-            for (int y = 0; y < H; ++y)
+    forEachRow(H, [&](int y) {
+        for (int h = 0; h < 2; ++h)
+            for (int c = 0; c < 3; ++c)
                 for (int x = 0; x < W; ++x) {
                     float most = 0.0f;
                     forEachAround(x, y, 1, W, H, [&](int i, int j) {
@@ -139,6 +152,7 @@ void limitOutliers(PlanarImage (&color)[2], float factor) {
                     float& v = limited[h].at(c, x, y);
                     v = std::min(v, factor * most);
                 }
+    });
     color[0] = std::move(limited[0]);
     color[1] = std::move(limited[1]);
 }
@@ -162,8 +176,8 @@ PlanarImage robustVariance(const PlanarImage& variance) {
     constexpr int kRadius = 2;
     PlanarImage out(variance.width, variance.height, variance.channels);
     const int W = variance.width, H = variance.height;
-    for (int c = 0; c < variance.channels; ++c)
-        for (int y = 0; y < H; ++y)
+    forEachRow(H, [&](int y) {
+        for (int c = 0; c < variance.channels; ++c)
             for (int x = 0; x < W; ++x) {
                 float around[(2 * kRadius + 1) * (2 * kRadius + 1)];
                 int n = 0;
@@ -175,6 +189,7 @@ PlanarImage robustVariance(const PlanarImage& variance) {
                 for (int k = 0; k < kept; ++k) sum += around[k];
                 out.at(c, x, y) = std::max(float(sum / kept), variance.at(c, x, y));
             }
+    });
     return out;
 }
 
