@@ -194,8 +194,9 @@ PlanarImage robustVariance(const PlanarImage& variance) {
 }
 
 // Consistency limit: the denoised value stays within `k` standard errors of
-// the pixel's own mean, sigma = sqrt(variance) (the robust variance). Removing noise moves a
-// pixel by about one standard error; a first-order fit can move it by far
+// the pixel's own mean, sigma = sqrt(variance) of the robust variance.
+// Removing noise moves a pixel by about one standard error; a first-order
+// fit can move it by far
 // more where a neighbour it averaged with is much brighter and the features
 // do not tell them apart (the small lamps seen through the DamagedHelmet's
 // visor came out as bright crosses, 100 times too bright: such a value is
