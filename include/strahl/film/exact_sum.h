@@ -119,7 +119,6 @@ public:
     }
 
 private:
-
     Int128 bits_ = 0;
 };
 
