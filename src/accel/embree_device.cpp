@@ -79,7 +79,8 @@ void EmbreeDevice::check(const char* what) {
         fail(what, ": stopped at the memory limit of ", formatBytes(size_t(limitBytes_)),
              ": the scene held ", formatBytes(size_t(baselineBytes_)),
              " when the BVH build started and the BVH needed at least ",
-             formatBytes(size_t(refused)), " more; raise --memory-limit (and keep compact mode, the default and the leanest BVH)");
+             formatBytes(size_t(refused)), " more; raise --memory-limit (and keep compact mode, the leanest BVH: the default "
+                                                "with --memory-limit)");
     }
     fail("Embree: ", what, ": ", message);
 }

@@ -13,6 +13,12 @@ namespace strahl::app {
 
 namespace {
 
+// "compact" or "not compact", and "(auto)" when no flag chose it.
+std::string bvhLayoutName(const Options& o, const World& world) {
+    const bool compact = useCompactBvh(buildOptions(o), world.triangleCount());
+    return std::string(compact ? "compact" : "not compact") + (o.compact ? "" : " (auto)");
+}
+
 // One line per shape: its index (the geomID within its list), name and size.
 void printShapes(const std::vector<SceneShape>& shapes, const char* indent) {
     for (size_t i = 0; i < shapes.size(); ++i) {
@@ -77,7 +83,7 @@ int runInfo(const Options& o) {
     std::printf("memory     shapes %s, bvh %s (%s, %s%s), peak resident %s\n",
                 formatBytes(world.shapeMemoryBytes()).c_str(),
                 formatBytes(world.accel->memoryBytes()).c_str(), o.bvhQuality.c_str(),
-                o.compact ? "compact" : "not compact (--no-compact)",
+                bvhLayoutName(o, world).c_str(),
                 world.triangleCount()
                     ? (", " +
                        formatBytes((world.shapeMemoryBytes() + world.accel->memoryBytes()) /

@@ -87,10 +87,14 @@ void addMemoryOptions(CLI::App& command, Options& o) {
                     "Embree BVH build: low (Morton: fastest build), medium (binned SAH, "
                     "default) or high (spatial splits: fastest rays, slowest build)")
         ->check(CLI::IsMember({"low", "medium", "high"}));
-    command.add_flag("--compact,!--no-compact", o.compact,
-                     "Embree's compact BVH (the default): indexed triangles, about half the "
-                     "peak memory and a faster build for rays about 10% slower; --no-compact "
-                     "for the fastest rays");
+    // A flag function, not a flag on the optional: it runs only when one of the
+    // two is given (unset means "by scene size"); --no-compact counts -1.
+    command.add_flag_function(
+        "--compact,!--no-compact", [&o](std::int64_t count) { o.compact = count > 0; },
+                     "Embree's BVH layout. --compact: indexed triangles, about half the "
+                     "peak memory and a faster build, for rays 10-15% slower; --no-compact: "
+                     "the fastest rays. Default: compact above 4M stored triangles or with "
+                     "--memory-limit, else not (docs/memory.md)");
     command.add_option("--memory-limit", o.memoryLimit,
                        "Stop with a clear error (exit 1) instead of being killed when loading "
                        "the scene or building the BVH would take the process past SIZE of "

@@ -44,7 +44,7 @@ struct Options {
     std::string accel = "embree";  // embree | naive
     // render and info: Embree's BVH build (docs/memory.md)
     std::string bvhQuality = "medium";       // low | medium | high
-    bool compact = true;                     // Embree's compact BVH (--no-compact: off)
+    std::optional<bool> compact;             // --compact/--no-compact; unset: by scene size (useCompactBvh)
     std::optional<std::string> memoryLimit;  // e.g. "8G": a clean stop instead of a kill
     std::string algorithm = "raytrace";  // raytrace | raster
     ColorSettings color;

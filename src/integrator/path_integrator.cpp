@@ -101,6 +101,10 @@ Color PathIntegrator::shade(const World& world, const SurfaceHit& first, Sampler
         if (!ctx.bsdf.isSpecular() && mode != LightSampling::BsdfOnly)
             add(beta * sampleDirectLight(world, ctx, sampler, mode, stats), depth + 1);
 
+        // The last bounce can only bring emission (the loop ends where its ray
+        // lands): with none in the scene its light is 0, so it is not taken.
+        if (depth + 1 >= options_.maxDepth && !world.emissionReachable()) break;
+
         const float uLobe = sampler.get1D();
         const std::optional<BsdfSample> bs = ctx.bsdf.sample(ctx.toLocal(ctx.wo), uLobe,
                                                              sampler.get2D());

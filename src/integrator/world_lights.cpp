@@ -6,6 +6,7 @@
 // map lets the path tracer find the light a BSDF-sampled ray hit, for the MIS
 // weight. (An emission mapped triplanar is found by BSDF sampling only.)
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -128,6 +129,9 @@ void World::prepareLights() {
     }
     lightSet = LightSet(std::move(all), bounds(), lightSelection, emitterOf);
     lightsPrepared_ = true;
+    emissionReachable_ = !lightSet.infiniteLights().empty() ||
+                         std::any_of(materials.begin(), materials.end(),
+                                     [](const Material& m) { return m.emits(); });
 }
 
 uint32_t World::areaLightOf(const Hit& hit) const {

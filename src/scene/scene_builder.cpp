@@ -342,7 +342,7 @@ BuiltScene buildScene(const SceneDesc& desc, const BuildOptions& options, BuildT
         accelOptions.threads = options.threads;
         accelOptions.progress = options.bvhProgress;
         accelOptions.quality = options.bvhQuality;
-        accelOptions.compact = options.compact;
+        accelOptions.compact = useCompactBvh(options, world.triangleCount());
         accelOptions.memoryLimitBytes = options.memoryLimitBytes;
         accelOptions.memoryBaselineBytes = loadedBytes;
         try {
@@ -355,6 +355,11 @@ BuiltScene buildScene(const SceneDesc& desc, const BuildOptions& options, BuildT
     world.lightSelection = desc.render.lightSelection;
     world.prepareLights();
     return built;
+}
+
+bool useCompactBvh(const BuildOptions& options, size_t storedTriangles) {
+    if (options.compact) return *options.compact;
+    return storedTriangles > kCompactBvhAboveTriangles || options.memoryLimitBytes != 0;
 }
 
 World buildWorld(const SceneDesc& desc, const BuildOptions& options, BuildTimings* timings) {

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "app/cli_runner.h"
+#include "strahl/scene/scene_builder.h"
 #include "test_support.h"
 
 namespace strahl {
@@ -67,11 +68,35 @@ TEST(MemoryCli, BadSizesAndQualitiesAreUsageErrors) {
 TEST(MemoryCli, InfoReportsBvhMemoryPerTriangleAndPeakResident) {
     const RunResult r = runStrahl("info " + kScene + " --bvh-quality low");
     EXPECT_EQ(r.status, 0) << r.err;
-    EXPECT_THAT(r.out, HasSubstr("(low, compact, "));  // compact by default
+    // The default scene is small: not compact unless asked for (useCompactBvh).
+    EXPECT_THAT(r.out, HasSubstr("(low, not compact (auto), "));
     const RunResult full = runStrahl("info " + kScene + " --no-compact");
     EXPECT_EQ(full.status, 0) << full.err;
-    EXPECT_THAT(full.out, HasSubstr("(medium, not compact (--no-compact), "));
+    EXPECT_THAT(full.out, HasSubstr("(medium, not compact, "));
+    const RunResult compact = runStrahl("info " + kScene + " --compact");
+    EXPECT_EQ(compact.status, 0) << compact.err;
+    EXPECT_THAT(compact.out, HasSubstr("(medium, compact, "));
+    const RunResult limited = runStrahl("info " + kScene + " --memory-limit 16G");
+    EXPECT_EQ(limited.status, 0) << limited.err;
+    EXPECT_THAT(limited.out, HasSubstr("(medium, compact (auto), "));
     EXPECT_THAT(r.out, HasSubstr(" per stored triangle with its mesh data), peak resident "));
+}
+
+TEST(MemoryCli, CompactBvhByDefaultOnlyAboveTheThresholdOrWithAMemoryLimit) {
+    BuildOptions automatic;
+    EXPECT_FALSE(useCompactBvh(automatic, 0));
+    EXPECT_FALSE(useCompactBvh(automatic, kCompactBvhAboveTriangles));
+    EXPECT_TRUE(useCompactBvh(automatic, kCompactBvhAboveTriangles + 1));
+    BuildOptions limited;
+    limited.memoryLimitBytes = size_t(1) << 33;
+    EXPECT_TRUE(useCompactBvh(limited, 12));
+    BuildOptions full;
+    full.compact = false;
+    full.memoryLimitBytes = limited.memoryLimitBytes;
+    EXPECT_FALSE(useCompactBvh(full, kCompactBvhAboveTriangles * 4));
+    BuildOptions compact;
+    compact.compact = true;
+    EXPECT_TRUE(useCompactBvh(compact, 12));
 }
 
 }  // namespace

@@ -103,6 +103,10 @@ struct World {
     // ray queries, outside the accelerator).
     void rethrowCutoutError() const;
     bool lightsPrepared() const { return lightsPrepared_; }
+    // Whether a ray can meet any emission: an infinite light, or a material
+    // that emits (set by prepareLights). When not, rays traced only for the
+    // emission they find can be skipped.
+    bool emissionReachable() const { return emissionReachable_; }
     // The lightSet index of the emissive triangle a valid hit lies on, or
     // kInvalidId if it is not an area light (no emission, emission mapped
     // triplanar or on a tessellated surface, or a user shape: those are found
@@ -143,6 +147,7 @@ private:
     std::unordered_map<uint64_t, uint32_t> emitterOffset_;
     std::vector<uint32_t> areaLightOfPrim_;
     bool lightsPrepared_ = false;
+    bool emissionReachable_ = true;
     std::unique_ptr<CutoutErrors> cutoutErrors_;
 };
 

@@ -8,6 +8,7 @@
 // loop).
 
 #include <functional>
+#include <optional>
 
 #include "strahl/camera/camera.h"
 #include "strahl/core/filter.h"
@@ -23,10 +24,10 @@ struct BuildOptions {
     int threads = 0;  // 0: all hardware threads
     AccelKind accel = AccelKind::Embree;
     BvhQuality bvhQuality = BvhQuality::Medium;  // Embree only
-    // Embree's compact BVH, the default as in Cycles: on 10^7 triangles it
-    // halves the peak memory and builds 1.8x faster for rays ~10% slower
-    // (docs/memory.md).
-    bool compact = true;
+    // Embree's compact BVH: on 10^7 triangles it halves the peak memory and
+    // builds 1.8x faster, for rays 10-15% slower (docs/memory.md). Unset: the
+    // choice of useCompactBvh below.
+    std::optional<bool> compact;
     // When not 0: resident memory allowed after loading, and for the process
     // while Embree builds (its memory monitor; see AccelBuildOptions). Going
     // past it is a strahl::Error, not a kill by the kernel.
@@ -35,6 +36,18 @@ struct BuildOptions {
     std::function<void()> bvhStarted;
     std::function<void(double)> bvhProgress;
 };
+
+// Compact mode is worth its slower rays only where memory and build time
+// matter: above this many stored triangles (the extra 32 bytes per triangle of
+// the full layout, docs/memory.md, stay below 128 MiB and its extra build time
+// below about 0.6 s), or when a memory limit is set. Below it the full layout
+// renders 10-15 % faster (bench/RESULTS.md, "Peers: Embree's tutorials").
+inline constexpr size_t kCompactBvhAboveTriangles = size_t(1) << 22;
+
+// The BVH layout of a build: `options.compact` when set, else compact for
+// scenes of more than kCompactBvhAboveTriangles stored triangles or with a
+// memory limit.
+bool useCompactBvh(const BuildOptions& options, size_t storedTriangles);
 
 struct BuildTimings {
     double loadSeconds = 0.0;  // reading and preparing meshes
