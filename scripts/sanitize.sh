@@ -24,6 +24,9 @@ case "$step" in all | build | test) ;; *) echo "usage: $0 [build|test]" >&2; exi
 # operator[] within size() — ASan alone only sees past the allocation —,
 # front()/back() of an empty container, *optional without a value, ...); it
 # does not change the ABI, so the uninstrumented libraries mix with it.
+# -g1 (line tables, no variable or type information) is all a sanitizer's
+# stack trace needs (function, file and line) and compiles and links faster
+# than full -g: the sanitizer build is the longest stage of CI.
 # STRAHL_SANITIZED lets a test scale down heavy workloads (pixels, rays) under
 # the sanitizers only (tests/sanitizers/sanitized.h); the normal build never
 # defines it.
@@ -81,7 +84,7 @@ if [ "$step" != test ]; then
   cmake -S "$root" -B "$build" "${generator[@]}" \
     -DCMAKE_BUILD_TYPE=Debug \
     -DCMAKE_C_COMPILER=gcc -DCMAKE_CXX_COMPILER=g++ \
-    -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
+    -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
     -DCMAKE_CXX_FLAGS="$cxx_flags" \
     -DCMAKE_EXE_LINKER_FLAGS="$link_flags" \
     -DCMAKE_SHARED_LINKER_FLAGS="$link_flags" \

@@ -7,7 +7,7 @@
 #
 # Usage: scripts/test.sh           everything (what CI runs; about 46 min on 2 cores from scratch)
 #        scripts/test.sh --quick   the Release suite only (the edit-build-test loop)
-# Environment: FUZZ_SECONDS, fuzzing time per target (default 60).
+# Environment: FUZZ_SECONDS, fuzzing time per target (default 30).
 set -uo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 quick=0
@@ -44,7 +44,7 @@ sanitize_pass="${sanitize_pass:-0}" sanitize_fail="${sanitize_fail:-0}"
 if ((sanitize_status != 0 && sanitize_fail == 0)); then sanitize_fail=1; fi
 
 fuzz_log="$root/build/fuzz.log"
-"$root/scripts/fuzz.sh" --seconds "${FUZZ_SECONDS:-60}" 2>&1 | tee "$fuzz_log"
+"$root/scripts/fuzz.sh" --seconds "${FUZZ_SECONDS:-30}" 2>&1 | tee "$fuzz_log"
 fuzz_status=${PIPESTATUS[0]}
 read -r fuzz_total fuzz_clean <<<"$(sed -n 's/^fuzz: \([0-9]*\) targets, \([0-9]*\) clean$/\1 \2/p' "$fuzz_log")"
 fuzz_total="${fuzz_total:-5}" fuzz_clean="${fuzz_clean:-0}"
