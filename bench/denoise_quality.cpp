@@ -15,7 +15,6 @@
 // Finally the speed target on the default scene at 1920 x 1080: denoising
 // time / 16-spp render time, target < 1, measured in the same run.
 
-#include <OpenImageIO/imageio.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -27,9 +26,8 @@
 #include <string>
 #include <vector>
 
+#include "cli_render.h"
 #include "strahl/core/error.h"
-#include <fstream>
-#include <nlohmann/json.hpp>
 
 namespace fs = std::filesystem;
 using namespace strahl;
@@ -50,56 +48,21 @@ struct Options {
     std::vector<std::string> only;  // scene names; empty: all
 };
 
-using Channels = std::map<std::string, std::vector<float>>;
+using bench::Channels;
+using bench::readChannels;
+using bench::rgb;
+using bench::RenderTimes;
 
-Channels readChannels(const fs::path& file) {
-    auto in = OIIO::ImageInput::open(file.string());
-    if (!in) fail(file.string(), ": cannot read: ", OIIO::geterror());
-    const OIIO::ImageSpec& spec = in->spec();
-    const size_t n = size_t(spec.width) * size_t(spec.height), c = size_t(spec.nchannels);
-    std::vector<float> pixels(n * c);
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()))
-        fail(file.string(), ": cannot read: ", in->geterror());
-    Channels out;
-    for (size_t k = 0; k < c; ++k) {
-        std::vector<float>& plane = out[spec.channel_name(int(k))];
-        plane.resize(n);
-        for (size_t i = 0; i < n; ++i) plane[i] = pixels[i * c + k];
-    }
-    return out;
-}
-
-// What a render's --stats file says about its time.
-struct RenderTimes {
-    double render = 0.0, denoise = 0.0;
-};
-
-// Renders `scene` to `out` (float EXR) with the given spp and seed, running
-// the strahl binary: one process per render, as a user would (and OpenImageIO's
-// texture cache is not asked to survive several worlds in one process).
+// Renders `scene` to `out` (float EXR, no AOVs) with the given size, spp and
+// seed, through the strahl binary (bench/cli_render.h).
 RenderTimes render(const fs::path& scene, const fs::path& out, int width, int height, int spp,
                    uint64_t seed, bool denoise) {
-    const fs::path stats = out.string() + ".stats.json";
-    const std::string command = std::string(STRAHL_BINARY) + " render '" + scene.string() +
-                                "' -q --exr-float --set '/film/aovs=[]' --width " +
-                                std::to_string(width) + " --height " + std::to_string(height) +
-                                " --spp " + std::to_string(spp) + " --seed " +
-                                std::to_string(seed) + (denoise ? " --denoise" : "") + " -o '" +
-                                out.string() + "' --stats '" + stats.string() + "'";
-    if (std::system(command.c_str()) != 0) fail("render failed: ", command);
-    std::ifstream in(stats);
-    const nlohmann::json j = nlohmann::json::parse(in);
-    fs::remove(stats);
-    return {j["timings"]["render"].get<double>(), j["timings"]["denoise"].get<double>()};
-}
-
-std::vector<float> rgb(const Channels& c, const std::string& prefix) {
-    const auto& r = c.at(prefix + "R");
-    const auto& g = c.at(prefix + "G");
-    const auto& b = c.at(prefix + "B");
-    std::vector<float> out;
-    for (size_t i = 0; i < r.size(); ++i) out.insert(out.end(), {r[i], g[i], b[i]});
-    return out;
+    std::vector<std::string> args{"--set",  "/film/aovs=[]",         "--width",
+                                  std::to_string(width),  "--height", std::to_string(height),
+                                  "--spp",  std::to_string(spp),     "--seed",
+                                  std::to_string(seed)};
+    if (denoise) args.push_back("--denoise");
+    return bench::renderWithCli(scene, out, args);
 }
 
 double relativeMse(const std::vector<float>& image, const std::vector<float>& reference) {

@@ -1,0 +1,72 @@
+#include "cli_render.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "strahl/core/error.h"
+
+namespace fs = std::filesystem;
+
+namespace strahl::bench {
+
+namespace {
+
+// 'text' for the shell, with every ' inside closed, escaped and reopened.
+std::string quoted(const std::string& text) {
+    std::string out = "'";
+    for (char c : text) {
+        if (c == '\'')
+            out += "'\\''";
+        else
+            out.push_back(c);
+    }
+    return out + "'";
+}
+
+}  // namespace
+
+Channels readChannels(const fs::path& file) {
+    auto in = OIIO::ImageInput::open(file.string());
+    if (!in) fail(file.string(), ": cannot read: ", OIIO::geterror());
+    const OIIO::ImageSpec& spec = in->spec();
+    const size_t n = size_t(spec.width) * size_t(spec.height), c = size_t(spec.nchannels);
+    std::vector<float> pixels(n * c);
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()))
+        fail(file.string(), ": cannot read: ", in->geterror());
+    Channels out;
+    for (size_t k = 0; k < c; ++k) {
+        std::vector<float>& plane = out[spec.channel_name(int(k))];
+        plane.resize(n);
+        for (size_t i = 0; i < n; ++i) plane[i] = pixels[i * c + k];
+    }
+    return out;
+}
+
+std::vector<float> rgb(const Channels& channels, const std::string& prefix) {
+    const auto& r = channels.at(prefix + "R");
+    const auto& g = channels.at(prefix + "G");
+    const auto& b = channels.at(prefix + "B");
+    std::vector<float> out;
+    out.reserve(3 * r.size());
+    for (size_t i = 0; i < r.size(); ++i) out.insert(out.end(), {r[i], g[i], b[i]});
+    return out;
+}
+
+RenderTimes renderWithCli(const fs::path& scene, const fs::path& out,
+                          const std::vector<std::string>& args) {
+    const fs::path stats = out.string() + ".stats.json";
+    std::string command = quoted(STRAHL_BINARY) + " render " + quoted(scene.string()) +
+                          " -q --exr-float -o " + quoted(out.string()) + " --stats " +
+                          quoted(stats.string());
+    for (const std::string& a : args) command += " " + quoted(a);
+    if (std::system(command.c_str()) != 0) fail("render failed: ", command);
+    std::ifstream in(stats);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    fs::remove(stats);
+    return {j["timings"]["render"].get<double>(), j["timings"]["denoise"].get<double>()};
+}
+
+}  // namespace strahl::bench
