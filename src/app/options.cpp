@@ -199,6 +199,12 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
                        "Path tracer: the same for indirect light (two or more reflections); 0 = "
                        "off (overrides render.clamp_indirect)")
         ->check(CLI::Range(0.0f, 1e30f));
+    render->add_option("--filter-glossy", o.filterGlossy,
+                       "Path tracer: Cycles' filter glossy: after diffuse or rough bounces, "
+                       "glossy and sharp lobes are roughened (more, the larger the value: 1 is "
+                       "Cycles' usual) so caustic fireflies go; biased; 0 = off (overrides "
+                       "render.filter_glossy)")
+        ->check(CLI::Range(0.0f, 1e30f));
     render->add_flag("--denoise", o.denoiseRender,
                      "Write the NFOR-denoised beauty as the main image (and to PNG/JPEG/TIFF); "
                      "EXRs keep the noisy beauty, the features and the even/odd sample halves as "

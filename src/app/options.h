@@ -27,7 +27,7 @@ struct Options {
     // render
     std::vector<std::string> outputs;  // overrides the scene's film.outputs
     std::optional<int> width, height, spp, threads, maxDepth;
-    std::optional<float> clampDirect, clampIndirect;
+    std::optional<float> clampDirect, clampIndirect, filterGlossy;
     bool denoiseRender = false;  // --denoise
     std::optional<std::string> integrator;
     std::optional<uint64_t> seed;

@@ -34,6 +34,8 @@ std::vector<ScenePatch> scenePatches(const Options& o) {
         add("/render/clamp_direct", *o.clampDirect, flag("--clamp-direct", *o.clampDirect));
     if (o.clampIndirect)
         add("/render/clamp_indirect", *o.clampIndirect, flag("--clamp-indirect", *o.clampIndirect));
+    if (o.filterGlossy)
+        add("/render/filter_glossy", *o.filterGlossy, flag("--filter-glossy", *o.filterGlossy));
     if (o.exrFloat) add("/film/exr_float", true, "--exr-float");
     if (o.denoiseRender) add("/render/denoise", true, "--denoise");
     if (!o.aovs.empty()) {

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
+#include <variant>
 
 #include "strahl/bsdf/bsdf_models.h"
 #include "strahl/bsdf/fresnel.h"
@@ -161,6 +163,55 @@ Bsdf Bsdf::blend(const Bsdf& a, const Bsdf& b, float weight) {
     blended.sum_ = std::move(sum);
     blended.albedo_ = (1.0f - weight) * a.albedo_ + weight * b.albedo_;
     return blended;
+}
+
+// ---- Roughening (filter glossy) ------------------------------------------------
+
+namespace {
+
+MicrofacetDistribution atLeast(const MicrofacetDistribution& m, float alpha) {
+    if (m.alphaX() >= alpha && m.alphaY() >= alpha) return m;
+    return MicrofacetDistribution(std::max(m.alphaX(), alpha), std::max(m.alphaY(), alpha),
+                                  m.model());
+}
+
+BsdfModel roughenedModel(const BsdfModel& model, float alpha) {
+    return std::visit(
+        [alpha](const auto& m) -> BsdfModel {
+            using Model = std::decay_t<decltype(m)>;
+            Model out = m;
+            if constexpr (std::is_same_v<Model, ConductorModel> ||
+                          std::is_same_v<Model, DielectricModel>) {
+                out.microfacets = atLeast(m.microfacets, alpha);
+            } else if constexpr (std::is_same_v<Model, PlasticModel>) {
+                // A rough coat's tables hold its own alpha: only a coat without
+                // them (smooth, or the 1 - F approximation) can change alpha.
+                if (!m.roughCoat) out.microfacets = atLeast(m.microfacets, alpha);
+            } else if constexpr (std::is_same_v<Model, MetallicRoughnessModel>) {
+                out.ggx = atLeast(m.ggx, alpha);
+            } else if constexpr (std::is_same_v<Model, PhongModel>) {
+                // The Phong exponent of the same width as Beckmann alpha:
+                // n = 2 / alpha^2 - 2 (Walter et al. 2007, sec. 5.2).
+                out.exponent = std::min(m.exponent, 2.0f / (alpha * alpha) - 2.0f);
+            }
+            return out;  // Lambert, black, thin dielectric, principled: as they are
+        },
+        model);
+}
+
+}  // namespace
+
+Bsdf Bsdf::roughened(float alpha) const {
+    if (!(alpha > 0.0f)) return *this;
+    Bsdf out = *this;
+    if (sum_) {
+        auto sum = std::make_shared<Sum>(*sum_);
+        for (WeightedModel& term : *sum) term.model = roughenedModel(term.model, alpha);
+        out.sum_ = std::move(sum);
+    } else {
+        out.model_ = roughenedModel(model_, alpha);
+    }
+    return out;
 }
 
 // ---- Evaluation ----------------------------------------------------------------

@@ -11,10 +11,21 @@
 // a specular bounce have weight 1 (no light sample could have found them), as
 // have emitters that are not light-sampled (textured emission, user shapes).
 //
-// Russian roulette from bounce russianRouletteDepth (2) on: continue with probability
-// q = min(1, max(beta * etaScale)), dividing beta by q; etaScale undoes the
-// 1/eta^2 radiance scaling of refraction so paths inside glass are not killed
-// for it (pbrt-v4).
+// Russian roulette from bounce russianRouletteDepth on: continue with probability
+// q = min(1, max(beta * etaScale) / russianRouletteThreshold), dividing beta by
+// q; etaScale undoes the 1/eta^2 radiance scaling of refraction so paths inside
+// glass are not killed for it (pbrt-v4). With threshold 1 this is pbrt-v4's
+// rule; a smaller threshold leaves every path whose throughput is above it
+// alone, so roulette ends only the paths that can bring little light.
+//
+// Filter glossy (Cycles' "filter glossy", off by default, biased): a path
+// remembers the smallest density of its rough bounces so far, p_min (a diffuse
+// bounce has at most 1/pi). At every later vertex, with the user's value F,
+// b = p_min / F; if b < 1 every glossy and specular lobe there is roughened to
+// at least alpha = sqrt(1 - b) / 2 (Bsdf::roughened): after a diffuse bounce,
+// sharp reflections and refractions, which only a lucky BSDF sample could
+// find lights through, turn into rough ones that light sampling reaches.
+// Caustic fireflies go, and caustics blur. (The formula is Cycles'.)
 //
 // Sample clamping (Cycles' "clamp direct/indirect", off by default, biased):
 // the light a sample gathers is kept in three sums by the reflections it took
@@ -25,6 +36,8 @@
 #include "path_integrator.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "shading_context.h"
 #include "strahl/core/sampling.h"
@@ -58,6 +71,7 @@ Color PathIntegrator::shade(const World& world, const SurfaceHit& first, Sampler
     float prevBsdfPdf = 0.0f;
     LightSampleContext prevContext;
     float pathLength = 0.0f;
+    float minBouncePdf = std::numeric_limits<float>::infinity();  // filter glossy's p_min
 
     Ray ray = first.ray();
     Hit hit = first.hit();
@@ -88,7 +102,11 @@ Color PathIntegrator::shade(const World& world, const SurfaceHit& first, Sampler
         const SurfaceHit surface(world, ray, hit);
         pathLength += hit.t * glm::length(ray.dir);
         const float footprint = options_.coneWidth + options_.coneAngle * pathLength;
-        const ShadingContext ctx = makeShadingContext(world, surface, footprint);
+        ShadingContext ctx = makeShadingContext(world, surface, footprint);
+        if (options_.filterGlossy > 0.0f) {
+            const float blurPdf = minBouncePdf / options_.filterGlossy;
+            if (blurPdf < 1.0f) ctx.bsdf = ctx.bsdf.roughened(0.5f * std::sqrt(1.0f - blurPdf));
+        }
 
         if (ctx.material->emits() && !(depth == 0 && options_.hideEmitters)) {
             const uint32_t areaLight = world.areaLightOf(hit);
@@ -117,6 +135,7 @@ Color PathIntegrator::shade(const World& world, const SurfaceHit& first, Sampler
         if (!isFinite(beta) || maxComponent(beta) <= 0.0f) break;
         specularBounce = bs->specular;
         prevBsdfPdf = bs->pdf;
+        if (!bs->specular) minBouncePdf = std::min(minBouncePdf, bs->pdf);
         if (bs->transmission) etaScale *= bs->eta * bs->eta;
         prevContext = ctx.lightContext();
 
@@ -126,7 +145,8 @@ Color PathIntegrator::shade(const World& world, const SurfaceHit& first, Sampler
 
         // The BSDF sample just taken is bounce depth + 1.
         if (options_.russianRoulette && depth + 1 >= options_.russianRouletteDepth) {
-            const float q = std::min(1.0f, maxComponent(beta * etaScale));
+            const float q =
+                std::min(1.0f, maxComponent(beta * etaScale) / options_.russianRouletteThreshold);
             if (q < 1.0f) {
                 if (sampler.get1D() >= q) break;
                 beta /= q;

@@ -199,6 +199,8 @@ ImageMetadata imageMetadata(const RenderJob& job, const SceneDocument& document,
         metadata.extra["clamp_direct"] = std::to_string(desc.render.clampDirect);
     if (desc.render.clampIndirect > 0.0f)
         metadata.extra["clamp_indirect"] = std::to_string(desc.render.clampIndirect);
+    if (desc.render.filterGlossy > 0.0f)
+        metadata.extra["filter_glossy"] = std::to_string(desc.render.filterGlossy);
     const bool partial = stats.cancelled || stats.stoppedEarly;
     if (job.algorithm == RenderAlgorithm::RayTrace) {
         // Every pixel has at least completedPasses samples; after an interrupt

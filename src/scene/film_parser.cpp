@@ -83,8 +83,8 @@ FilmDesc parseFilm(const JsonValue& v, const fs::path& folder) {
 
 RenderDesc parseRender(const JsonValue& v) {
     v.requireKeys({"integrator", "spp", "seed", "max_depth", "russian_roulette",
-                   "russian_roulette_depth", "ao_distance", "ao_samples", "clamp_direct",
-                   "clamp_indirect", "light_selection", "hide_emitters", "denoise"});
+                   "russian_roulette_depth", "russian_roulette_threshold", "ao_distance", "ao_samples", "clamp_direct",
+                   "clamp_indirect", "filter_glossy", "light_selection", "hide_emitters", "denoise"});
     RenderDesc r;
     if (auto integrator = v.find("integrator"))
         r.integrator = integrator->oneOf(integratorNames());
@@ -102,16 +102,22 @@ RenderDesc parseRender(const JsonValue& v) {
                                : LightSelection::Power;
     if (auto rr = v.find("russian_roulette_depth"))
         r.russianRouletteDepth = static_cast<int>(rr->integer(1, 1024));
+    if (auto rr = v.find("russian_roulette_threshold")) {
+        r.russianRouletteThreshold = rr->number();
+        if (!(r.russianRouletteThreshold > 0.0f && r.russianRouletteThreshold <= 1.0f))
+            rr->fail("must be in (0, 1], got ", r.russianRouletteThreshold);
+    }
     if (auto distance = v.find("ao_distance")) {
         r.aoDistance = distance->number();
         if (!(r.aoDistance >= 0.0f)) distance->fail("must be non-negative, got ", r.aoDistance);
     }
     if (auto samples = v.find("ao_samples")) r.aoSamples = static_cast<int>(samples->integer(1, 4096));
     for (auto [key, value] : {std::pair{"clamp_direct", &r.clampDirect},
-                              std::pair{"clamp_indirect", &r.clampIndirect}})
-        if (auto clamp = v.find(key)) {
-            *value = clamp->number();
-            if (!(*value >= 0.0f)) clamp->fail("must be non-negative (0: off), got ", *value);
+                              std::pair{"clamp_indirect", &r.clampIndirect},
+                              std::pair{"filter_glossy", &r.filterGlossy}})
+        if (auto given = v.find(key)) {
+            *value = given->number();
+            if (!(*value >= 0.0f)) given->fail("must be non-negative (0: off), got ", *value);
         }
     return r;
 }

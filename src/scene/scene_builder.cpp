@@ -393,8 +393,10 @@ IntegratorOptions buildIntegratorOptions(const SceneDesc& desc, const Camera& ca
     options.maxDepth = desc.render.maxDepth;
     options.russianRoulette = desc.render.russianRoulette;
     options.russianRouletteDepth = desc.render.russianRouletteDepth;
+    options.russianRouletteThreshold = desc.render.russianRouletteThreshold;
     options.clampDirect = desc.render.clampDirect;
     options.clampIndirect = desc.render.clampIndirect;
+    options.filterGlossy = desc.render.filterGlossy;
     options.aoDistance = desc.render.aoDistance;
     options.aoSamples = desc.render.aoSamples;
     options.hideEmitters = desc.render.hideEmitters;

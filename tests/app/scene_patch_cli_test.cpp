@@ -140,5 +140,27 @@ TEST(ScenePatchCli, ClampFlagsArePatchesAndRecordedInTheImage) {
     EXPECT_FALSE(fs::exists(dir / "bad.exr"));
 }
 
+// --filter-glossy is a scene patch too, and biased: said in the image.
+TEST(ScenePatchCli, FilterGlossyIsAPatchAndRecordedInTheImage) {
+    const fs::path dir = test::scratchDir("filter-glossy-cli");
+    test::writeFile(dir / "quad.json", kQuad);
+    const std::string scene = (dir / "quad.json").string() + " -q --integrator path";
+    ASSERT_EQ(runStrahl("render " + scene + " --filter-glossy 0.5 -o " + (dir / "flag.exr").string()).status, 0);
+    ASSERT_EQ(runStrahl("render " + scene + " --set /render/filter_glossy=0.5 -o " +
+                        (dir / "set.exr").string())
+                  .status,
+              0);
+    const test::ExrFile flag = readExr(dir / "flag.exr"), set = readExr(dir / "set.exr");
+    test::expectIdentical(flag, set, "--filter-glossy and --set");
+    EXPECT_EQ(flag.fingerprint, set.fingerprint);
+    auto in = OIIO::ImageInput::open((dir / "flag.exr").string());
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->spec().get_string_attribute("strahl:filter_glossy"), "0.500000");
+    const test::RunResult bad = runStrahl("render " + scene + " --filter-glossy -1 -o " +
+                                          (dir / "bad.exr").string());
+    EXPECT_EQ(bad.status, 2) << bad.err;
+    EXPECT_FALSE(fs::exists(dir / "bad.exr"));
+}
+
 }  // namespace
 }  // namespace strahl

@@ -418,8 +418,9 @@ TEST(SceneParser, UnknownKeysNameTheObjectAndTheAllowedKeys) {
               "exr_float, filter, crop)");
     EXPECT_EQ(errorWith(R"("render": {"samples": 4})"),
               "scene.json: /render: unknown key 'samples' (allowed: integrator, spp, seed, "
-              "max_depth, russian_roulette, russian_roulette_depth, ao_distance, ao_samples, "
-              "clamp_direct, clamp_indirect, light_selection, hide_emitters, denoise)");
+              "max_depth, russian_roulette, russian_roulette_depth, russian_roulette_threshold, "
+              "ao_distance, ao_samples, "
+              "clamp_direct, clamp_indirect, filter_glossy, light_selection, hide_emitters, denoise)");
     EXPECT_EQ(errorWith(R"("materials": [{"name": "a", "colour": 1}])"),
               "scene.json: /materials/0: unknown key 'colour' for a diffuse material (allowed: "
               "name, type, emission, two_sided, normal_map, bump_map, mapping, opacity, opacity_cutoff, color, diffuse)");

@@ -102,6 +102,14 @@ public:
     bool isOpaque() const;
     // A reflectance-like colour for the albedo AOV (denoisers).
     Color albedo() const;
+    // This BSDF with every glossy or specular lobe at least `alpha` rough
+    // (Cycles' "filter glossy", which the path tracer applies after rough
+    // bounces; biased): microfacet lobes (conductor, dielectric, plastic
+    // without a rough coat's tables, metallic-roughness) get alpha =
+    // max(alpha, own), Phong and Blinn the exponent 2 / alpha^2 - 2 of that
+    // width if it is smaller. Lambert, the thin dielectric and the principled
+    // BSDF stay as they are. alpha <= 0: unchanged.
+    Bsdf roughened(float alpha) const;
 
     // Perceptual roughness r in [0, 1] to GGX alpha = r^2 (Burley 2012).
     static float roughnessToAlpha(float roughness) { return roughness * roughness; }

@@ -42,11 +42,16 @@ enum class LightSampling { Mis, BsdfOnly, LightOnly };
 struct IntegratorOptions {
     int maxDepth = 8;          // path: bounces; 0 shows emitters only
     bool russianRoulette = true;
-    int russianRouletteDepth = 2;  // path: roulette after this bounce and every later one
+    int russianRouletteDepth = 1;  // path: roulette after this bounce and every later one
+    // path: a path continues with q = min(1, throughput / threshold): only paths
+    // whose throughput fell below the threshold play (docs/scene-format.md#render).
+    float russianRouletteThreshold = 0.5f;
     // path: the largest channel of one sample's light after one reflection
     // (direct) or more (indirect); 0: not clamped (docs/scene-format.md#render).
     float clampDirect = 0.0f;
     float clampIndirect = 0.0f;
+    // path: Cycles' filter glossy, 0 = off (path_integrator.cpp, docs/scene-format.md#render).
+    float filterGlossy = 0.0f;
     LightSampling sampling = LightSampling::Mis;
     float aoDistance = 0.0f;   // ao: occluder search distance; 0: the scene's diagonal / 4
     int aoSamples = 1;         // ao: rays per camera sample

@@ -89,13 +89,20 @@ struct RenderDesc {
     uint64_t seed = 0;
     int maxDepth = 8;            // path
     bool russianRoulette = true; // path
-    int russianRouletteDepth = 2;  // path: the first bounce roulette may end a path after
+    // path: roulette from this bounce on, for paths whose throughput fell below
+    // the threshold. Chosen by bench_roulette: the most efficient setting that
+    // never loses against no roulette (bench/RESULTS.md, "Russian roulette").
+    int russianRouletteDepth = 1;
+    float russianRouletteThreshold = 0.5f;
     LightSelection lightSelection = LightSelection::Power;  // direct, path: next-event estimation
     // path: Cycles-style sample clamping, biased and off (0) by default: the
     // light of one sample after one reflection (direct) or more (indirect) is
     // scaled down so its largest channel is at most this.
     float clampDirect = 0.0f;
     float clampIndirect = 0.0f;
+    // path: Cycles' "filter glossy", biased and off (0) by default: after rough
+    // bounces, glossy and specular lobes are roughened (path_integrator.cpp).
+    float filterGlossy = 0.0f;
     float aoDistance = 0.0f;     // ao (0: a quarter of the scene diagonal)
     int aoSamples = 1;           // ao
     bool hideEmitters = false;   // direct, path: emitters and the sky unseen by camera rays
