@@ -79,8 +79,9 @@ void EmbreeDevice::check(const char* what) {
         fail(what, ": stopped at the memory limit of ", formatBytes(size_t(limitBytes_)),
              ": the scene held ", formatBytes(size_t(baselineBytes_)),
              " when the BVH build started and the BVH needed at least ",
-             formatBytes(size_t(refused)), " more; raise --memory-limit (and keep compact mode, the leanest BVH: the default "
-                                                "with --memory-limit)");
+             formatBytes(size_t(refused)),
+             " more; raise --memory-limit (and keep compact mode, the leanest BVH: the default "
+             "with --memory-limit)");
     }
     fail("Embree: ", what, ": ", message);
 }

@@ -91,10 +91,10 @@ void addMemoryOptions(CLI::App& command, Options& o) {
     // two is given (unset means "by scene size"); --no-compact counts -1.
     command.add_flag_function(
         "--compact,!--no-compact", [&o](std::int64_t count) { o.compact = count > 0; },
-                     "Embree's BVH layout. --compact: indexed triangles, about half the "
-                     "peak memory and a faster build, for rays 10-15% slower; --no-compact: "
-                     "the fastest rays. Default: compact above 4M stored triangles or with "
-                     "--memory-limit, else not (docs/memory.md)");
+        "Embree's BVH layout. --compact: indexed triangles, about half the "
+        "peak memory and a faster build, for rays 10-15% slower; --no-compact: "
+        "the fastest rays. Default: compact above 4M stored triangles or with "
+        "--memory-limit, else not (docs/memory.md)");
     command.add_option("--memory-limit", o.memoryLimit,
                        "Stop with a clear error (exit 1) instead of being killed when loading "
                        "the scene or building the BVH would take the process past SIZE of "
