@@ -5,10 +5,13 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <system_error>
+#include <vector>
 
 #include "strahl/core/error.h"
 
@@ -18,12 +21,24 @@ inline std::filesystem::path sourceDir() { return STRAHL_SOURCE_DIR; }
 inline std::filesystem::path sharedData() { return STRAHL_SHARED_DATA; }
 
 // A fresh, empty scratch folder for one test. ctest runs every test in its own
-// process, several at once, so the folder name carries the process id.
+// process, several at once, so the folder name carries the process id. The
+// folders are removed when the test process exits normally (set
+// STRAHL_KEEP_SCRATCH to keep them for a look after a failure).
 inline std::filesystem::path scratchDir(const std::string& name) {
+    struct Cleanup {
+        std::vector<std::filesystem::path> dirs;
+        ~Cleanup() {
+            if (std::getenv("STRAHL_KEEP_SCRATCH")) return;
+            std::error_code ignored;  // a folder already gone is no failure
+            for (const auto& dir : dirs) std::filesystem::remove_all(dir, ignored);
+        }
+    };
+    static Cleanup cleanup;
     auto dir = std::filesystem::temp_directory_path() /
                ("strahl-test-" + name + "-" + std::to_string(getpid()));
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
+    cleanup.dirs.push_back(dir);
     return dir;
 }
 
