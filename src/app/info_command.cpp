@@ -14,9 +14,9 @@ namespace strahl::app {
 namespace {
 
 // "compact" or "not compact", and "(auto)" when no flag chose it.
-std::string bvhLayoutName(const Options& o, const World& world) {
-    const bool compact = useCompactBvh(buildOptions(o), world.triangleCount());
-    return std::string(compact ? "compact" : "not compact") + (o.compact ? "" : " (auto)");
+std::string bvhLayoutName(const BuildOptions& build, const World& world) {
+    const bool compact = useCompactBvh(build, world.triangleCount());
+    return std::string(compact ? "compact" : "not compact") + (build.compact ? "" : " (auto)");
 }
 
 // One line per shape: its index (the geomID within its list), name and size.
@@ -47,7 +47,8 @@ void printShapes(const std::vector<SceneShape>& shapes, const char* indent) {
 int runInfo(const Options& o) {
     const SceneDesc desc = patchedScene(o).parse();
     BuildTimings timings;
-    const BuiltScene scene = buildScene(desc, buildOptions(o), &timings);
+    const BuildOptions build = buildOptions(o);
+    const BuiltScene scene = buildScene(desc, build, &timings);
     const World& world = scene.world;
     const Bounds3 b = world.bounds();
     std::printf("scene      %s\n", desc.file.string().c_str());
@@ -83,7 +84,7 @@ int runInfo(const Options& o) {
     std::printf("memory     shapes %s, bvh %s (%s, %s%s), peak resident %s\n",
                 formatBytes(world.shapeMemoryBytes()).c_str(),
                 formatBytes(world.accel->memoryBytes()).c_str(), o.bvhQuality.c_str(),
-                bvhLayoutName(o, world).c_str(),
+                bvhLayoutName(build, world).c_str(),
                 world.triangleCount()
                     ? (", " +
                        formatBytes((world.shapeMemoryBytes() + world.accel->memoryBytes()) /

@@ -70,15 +70,15 @@ TEST(MemoryCli, InfoReportsBvhMemoryPerTriangleAndPeakResident) {
     EXPECT_EQ(r.status, 0) << r.err;
     // The default scene is small: not compact unless asked for (useCompactBvh).
     EXPECT_THAT(r.out, HasSubstr("(low, not compact (auto), "));
-    const RunResult full = runStrahl("info " + kScene + " --no-compact");
-    EXPECT_EQ(full.status, 0) << full.err;
-    EXPECT_THAT(full.out, HasSubstr("(medium, not compact, "));
-    const RunResult compact = runStrahl("info " + kScene + " --compact");
-    EXPECT_EQ(compact.status, 0) << compact.err;
-    EXPECT_THAT(compact.out, HasSubstr("(medium, compact, "));
-    const RunResult limited = runStrahl("info " + kScene + " --memory-limit 16G");
-    EXPECT_EQ(limited.status, 0) << limited.err;
-    EXPECT_THAT(limited.out, HasSubstr("(medium, compact (auto), "));
+    // Each flag and the layout it leads to.
+    for (const auto& [flag, layout] :
+         {std::pair{" --no-compact", "(medium, not compact, "},
+          std::pair{" --compact", "(medium, compact, "},
+          std::pair{" --memory-limit 16G", "(medium, compact (auto), "}}) {
+        const RunResult run = runStrahl("info " + kScene + flag);
+        EXPECT_EQ(run.status, 0) << flag << ": " << run.err;
+        EXPECT_THAT(run.out, HasSubstr(layout)) << flag;
+    }
     EXPECT_THAT(r.out, HasSubstr(" per stored triangle with its mesh data), peak resident "));
 }
 

@@ -32,24 +32,18 @@ SceneDesc mirrorCorner(const std::string& render) {
     })", test::scratchDir("filter-glossy") / "corner.json");
 }
 
-std::vector<float> beauty(const SceneDesc& desc) { return test::renderFilm(desc).resolveBeauty(); }
-
-double sum(const std::vector<float>& image) {
-    double s = 0.0;
-    for (float v : image) s += v;
-    return s;
-}
-
 TEST(FilterGlossy, ZeroIsOffAndLeavesTheImageBitForBit) {
-    EXPECT_EQ(beauty(mirrorCorner("")), beauty(mirrorCorner(R"(, "filter_glossy": 0)")));
+    EXPECT_EQ(test::renderBeauty(mirrorCorner("")),
+              test::renderBeauty(mirrorCorner(R"(, "filter_glossy": 0)")));
 }
 
 TEST(FilterGlossy, AMirrorSeenAfterADiffuseBounceBringsThePointLight) {
-    const std::vector<float> plain = beauty(mirrorCorner(""));
-    const std::vector<float> filtered = beauty(mirrorCorner(R"(, "filter_glossy": 1)"));
+    const std::vector<float> plain = test::renderBeauty(mirrorCorner(""));
+    const std::vector<float> filtered =
+        test::renderBeauty(mirrorCorner(R"(, "filter_glossy": 1)"));
     // The mirrored light: an image of the point light as bright again, spread
     // over the floor; the whole image gains at least a tenth.
-    EXPECT_GT(sum(filtered), 1.1 * sum(plain));
+    EXPECT_GT(test::channelSum(filtered), 1.1 * test::channelSum(plain));
 }
 
 TEST(FilterGlossy, NegativeValuesAreRefusedWithTheirPlace) {

@@ -57,6 +57,18 @@ inline Film renderFilm(const SceneDesc& desc, const RenderSetup& setup = {}) {
     return film;
 }
 
+// The resolved beauty (RGB per pixel) of renderFilm(desc).
+inline std::vector<float> renderBeauty(const SceneDesc& desc) {
+    return renderFilm(desc).resolveBeauty();
+}
+
+// The sum of every channel of an image.
+inline double channelSum(const std::vector<float>& image) {
+    double s = 0.0;
+    for (float v : image) s += v;
+    return s;
+}
+
 struct Rendered {
     std::vector<float> beauty, depth, normal;
 };

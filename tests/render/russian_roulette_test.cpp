@@ -34,27 +34,25 @@ SceneDesc corner(const std::string& render, float albedo) {
     })", test::scratchDir("roulette") / "corner.json");
 }
 
-std::vector<float> beauty(const SceneDesc& desc) { return test::renderFilm(desc).resolveBeauty(); }
-
 double mean(const std::vector<float>& image) {
-    double s = 0.0;
-    for (float v : image) s += v;
-    return s / double(image.size());
+    return test::channelSum(image) / double(image.size());
 }
 
 TEST(RussianRoulette, PathsAboveTheThresholdAreLeftAloneBitForBit) {
     // Albedo 0.9 and 3 bounces: the throughput stays >= 0.9^3 = 0.729, above
     // the default threshold 0.5, so the default roulette never plays here.
-    const std::vector<float> off = beauty(corner(R"(, "russian_roulette": false)", 0.9f));
-    EXPECT_EQ(off, beauty(corner("", 0.9f)));
+    const std::vector<float> off =
+        test::renderBeauty(corner(R"(, "russian_roulette": false)", 0.9f));
+    EXPECT_EQ(off, test::renderBeauty(corner("", 0.9f)));
     // pbrt-v4's rule (threshold 1) plays from the first bounce: not the same.
-    EXPECT_NE(off, beauty(corner(R"(, "russian_roulette_threshold": 1)", 0.9f)));
+    EXPECT_NE(off, test::renderBeauty(corner(R"(, "russian_roulette_threshold": 1)", 0.9f)));
 }
 
 TEST(RussianRoulette, BelowTheThresholdItPlaysAndStaysUnbiased) {
     // Albedo 0.3: the throughput falls below 0.5 at the first bounce.
-    const std::vector<float> off = beauty(corner(R"(, "russian_roulette": false, "spp": 1024)", 0.3f));
-    const std::vector<float> on = beauty(corner(R"(, "spp": 1024)", 0.3f));
+    const std::vector<float> off =
+        test::renderBeauty(corner(R"(, "russian_roulette": false, "spp": 1024)", 0.3f));
+    const std::vector<float> on = test::renderBeauty(corner(R"(, "spp": 1024)", 0.3f));
     EXPECT_NE(off, on);
     // The whole image's mean agrees to well within its noise (1024 spp x 96
     // pixels; the indirect light roulette touches is a small part of it).

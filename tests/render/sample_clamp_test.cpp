@@ -33,29 +33,22 @@ SceneDesc roomWith(const std::string& render) {
     })", test::scratchDir("clamp") / "room.json");
 }
 
-std::vector<float> beauty(const SceneDesc& desc) { return test::renderFilm(desc).resolveBeauty(); }
-
 // The room with 4 bounces unless `render` says otherwise.
 SceneDesc room(const std::string& render) {
     return roomWith(render.find("max_depth") == std::string::npos ? R"(, "max_depth": 4)" + render
                                                                   : render);
 }
 
-double sum(const std::vector<float>& image) {
-    double s = 0.0;
-    for (float v : image) s += v;
-    return s;
-}
 
 TEST(SampleClamp, ZeroIsOffAndLeavesTheImageBitForBit) {
-    const std::vector<float> plain = beauty(room(""));
-    EXPECT_EQ(plain, beauty(room(R"(, "clamp_direct": 0, "clamp_indirect": 0)")));
+    const std::vector<float> plain = test::renderBeauty(room(""));
+    EXPECT_EQ(plain, test::renderBeauty(room(R"(, "clamp_direct": 0, "clamp_indirect": 0)")));
 }
 
 TEST(SampleClamp, AClampNeverBrightensAPixelAndCutsTheLightItNames) {
-    const std::vector<float> plain = beauty(room(""));
-    const std::vector<float> direct = beauty(room(R"(, "clamp_direct": 0.5)"));
-    const std::vector<float> indirect = beauty(room(R"(, "clamp_indirect": 0.05)"));
+    const std::vector<float> plain = test::renderBeauty(room(""));
+    const std::vector<float> direct = test::renderBeauty(room(R"(, "clamp_direct": 0.5)"));
+    const std::vector<float> indirect = test::renderBeauty(room(R"(, "clamp_indirect": 0.05)"));
     ASSERT_EQ(plain.size(), direct.size());
     for (size_t i = 0; i < plain.size(); ++i) {
         // Clamping only scales samples down (the sums are added in another
@@ -63,12 +56,12 @@ TEST(SampleClamp, AClampNeverBrightensAPixelAndCutsTheLightItNames) {
         EXPECT_LE(direct[i], plain[i] * (1.0f + 1e-5f) + 1e-6f) << i;
         EXPECT_LE(indirect[i], plain[i] * (1.0f + 1e-5f) + 1e-6f) << i;
     }
-    EXPECT_LT(sum(direct), 0.9 * sum(plain));
-    EXPECT_LT(sum(indirect), sum(plain));
+    EXPECT_LT(test::channelSum(direct), 0.9 * test::channelSum(plain));
+    EXPECT_LT(test::channelSum(indirect), test::channelSum(plain));
     // With one bounce only (direct light), an indirect clamp has nothing to cut.
-    const std::vector<float> oneBounce = beauty(room(R"(, "max_depth": 1)"));
+    const std::vector<float> oneBounce = test::renderBeauty(room(R"(, "max_depth": 1)"));
     const std::vector<float> oneBounceClamped =
-        beauty(room(R"(, "max_depth": 1, "clamp_indirect": 0.05)"));
+        test::renderBeauty(room(R"(, "max_depth": 1, "clamp_indirect": 0.05)"));
     for (size_t i = 0; i < oneBounce.size(); ++i)
         EXPECT_FLOAT_EQ(oneBounceClamped[i], oneBounce[i]) << i;
 }
