@@ -205,6 +205,17 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
                        "Cycles' usual) so caustic fireflies go; biased; 0 = off (overrides "
                        "render.filter_glossy)")
         ->check(CLI::Range(0.0f, 1e30f));
+    render->add_option("--adaptive-threshold", o.adaptiveThreshold,
+                       "Adaptive sampling: a pixel stops once its noise (the standard error of "
+                       "its mean in display units, over its 3x3 neighbourhood) is below this; "
+                       "--spp is then the most a pixel takes, and the samples AOV counts them; "
+                       "0.01 is a good start, 0 = off (sets render.adaptive.threshold; "
+                       "docs/adaptive.md)")
+        ->check(CLI::Range(0.0f, 1.0f));
+    render->add_option("--adaptive-min-samples", o.adaptiveMinSamples,
+                       "Adaptive sampling: samples every pixel takes before it may stop "
+                       "(default 16; sets render.adaptive.min_samples)")
+        ->check(CLI::Range(2, 65536));
     render->add_flag("--denoise", o.denoiseRender,
                      "Write the NFOR-denoised beauty as the main image (and to PNG/JPEG/TIFF); "
                      "EXRs keep the noisy beauty, the features and the even/odd sample halves as "

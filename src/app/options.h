@@ -28,6 +28,8 @@ struct Options {
     std::vector<std::string> outputs;  // overrides the scene's film.outputs
     std::optional<int> width, height, spp, threads, maxDepth;
     std::optional<float> clampDirect, clampIndirect, filterGlossy;
+    std::optional<float> adaptiveThreshold;  // --adaptive-threshold
+    std::optional<int> adaptiveMinSamples;   // --adaptive-min-samples
     bool denoiseRender = false;  // --denoise
     std::optional<std::string> integrator;
     std::optional<uint64_t> seed;

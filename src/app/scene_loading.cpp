@@ -36,6 +36,12 @@ std::vector<ScenePatch> scenePatches(const Options& o) {
         add("/render/clamp_indirect", *o.clampIndirect, flag("--clamp-indirect", *o.clampIndirect));
     if (o.filterGlossy)
         add("/render/filter_glossy", *o.filterGlossy, flag("--filter-glossy", *o.filterGlossy));
+    if (o.adaptiveThreshold)
+        add("/render/adaptive/threshold", *o.adaptiveThreshold,
+            flag("--adaptive-threshold", *o.adaptiveThreshold));
+    if (o.adaptiveMinSamples)
+        add("/render/adaptive/min_samples", *o.adaptiveMinSamples,
+            flag("--adaptive-min-samples", *o.adaptiveMinSamples));
     if (o.exrFloat) add("/film/exr_float", true, "--exr-float");
     if (o.denoiseRender) add("/render/denoise", true, "--denoise");
     if (!o.aovs.empty()) {

@@ -15,7 +15,8 @@ namespace {
 
 constexpr char kMagic[8] = {'S', 'T', 'R', 'A', 'H', 'L', 'C', 'K'};
 // 2: exact fixed-point sums (film/exact_sum.h) instead of float sums.
-constexpr uint32_t kVersion = 2;
+// 3: the adaptive sampling flags (Film::trackConvergence) after the other buffers.
+constexpr uint32_t kVersion = 3;
 // Fingerprints are a few hundred bytes; anything larger is not ours.
 constexpr uint32_t kMaxFingerprint = 1u << 16;
 

@@ -77,6 +77,8 @@ Fields fieldsOf(const std::vector<AovKind>& aovs, bool halves) {
                                           [c](FilmPixel& p) -> float& { return p.m2[c]; });
                 }
                 break;
+            case AovKind::Samples:
+                break;  // the counts are stored for every film (the samples channel)
         }
     }
     if (has(aovs, AovKind::Depth) || has(aovs, AovKind::Position))

@@ -173,13 +173,21 @@ Film readExrFilm(const ExrHeader& h) {
     const auto has = [&](AovKind kind) {
         return std::find(h.aovs.begin(), h.aovs.end(), kind) != h.aovs.end();
     };
-    const double n = h.samples;
     size_t i = 0;
     for (int y = window.y0; y < window.y1; ++y)
         for (int x = window.x0; x < window.x1; ++x, ++i) {
             const float* px = pixels.data() + i * stride;
             FilmPixel p;
+            // An adaptive render's pixels have their own counts (the samples AOV).
             p.samples = h.samples;
+            if (has(AovKind::Samples)) {
+                const float taken = px[column(AovKind::Samples, 0)];
+                if (!(taken >= 0.0f && taken <= float(h.samples)) || taken != std::floor(taken))
+                    fail(name, ": pixel (", x, ", ", y, ") has a samples value of ", taken,
+                         ", not a count from 0 to ", h.samples);
+                p.samples = static_cast<uint32_t>(taken);
+            }
+            const double n = p.samples;
             const auto sum3 = [&](ExactSum3& sum, size_t c0, size_t c1, size_t c2, double w) {
                 sum = {ExactSum::fromValue(double(px[c0]) * w), ExactSum::fromValue(double(px[c1]) * w),
                        ExactSum::fromValue(double(px[c2]) * w)};
@@ -188,7 +196,7 @@ Film readExrFilm(const ExrHeader& h) {
             // Depth +inf marks a pixel that no sample hit; without depth,
             // take every sample as a hit.
             const bool hit = !has(AovKind::Depth) || std::isfinite(px[column(AovKind::Depth, 0)]);
-            p.hits = hit ? h.samples : 0;
+            p.hits = hit ? p.samples : 0;
             if (has(AovKind::Normal))
                 sum3(p.normal, column(AovKind::Normal, 0), column(AovKind::Normal, 1),
                      column(AovKind::Normal, 2), n);

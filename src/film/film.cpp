@@ -16,8 +16,8 @@ namespace strahl {
 
 
 namespace {
-constexpr std::string_view kAovNames[] = {"normal",   "depth",    "albedo",
-                                          "position", "objectid", "variance"};  // enum order
+constexpr std::string_view kAovNames[] = {"normal",   "depth",    "albedo",  "position",
+                                          "objectid", "variance", "samples"};  // enum order
 
 constexpr float kNoObject = -1.0f;  // the objectid of a miss: no id is negative
 
@@ -74,6 +74,8 @@ int aovChannels(AovKind kind) {
             return 1;
         case AovKind::Variance:
             return 3;
+        case AovKind::Samples:
+            return 1;
     }
     fail("invalid AovKind value ", static_cast<int>(kind));
 }
@@ -119,6 +121,8 @@ Film::Film(int fullWidth, int fullHeight, PixelRect crop, std::vector<AovKind> a
                 mean_.assign(pixels, Color(0.0f));
                 m2_.assign(pixels, Color(0.0f));
                 break;
+            case AovKind::Samples:
+                break;  // the sample counts are always kept
         }
     }
 }
@@ -142,6 +146,29 @@ void Film::keepHalves(uint32_t firstSample) {
     evenNormal_.assign(pixels, ExactSum3{});
     evenDepth_.assign(pixels, ExactSum{});
     evenAlbedo_.assign(pixels, ExactSum3{});
+}
+
+void Film::trackConvergence() {
+    if (std::any_of(samples_.begin(), samples_.end(), [](uint32_t n) { return n > 0; }))
+        fail("film: trackConvergence after samples were added");
+    const size_t pixels = samples_.size();
+    if (m2_.empty()) {
+        mean_.assign(pixels, Color(0.0f));
+        m2_.assign(pixels, Color(0.0f));
+    }
+    converged_.assign(pixels, uint8_t{0});
+}
+
+Film::Estimate Film::estimate(int x, int y) const {
+    if (m2_.empty()) fail("film: no running variance (needs the variance AOV or trackConvergence)");
+    const size_t i = index(x, y);
+    Estimate e;
+    e.samples = samples_[i];
+    e.mean = mean_[i];
+    const auto n = static_cast<float>(e.samples);
+    // As the variance AOV: M2 / (n - 1) / n, clamped against rounding below 0.
+    if (e.samples > 1) e.varianceOfMean = glm::max(m2_[i], Color(0.0f)) / ((n - 1.0f) * n);
+    return e;
 }
 
 void Film::addSample(int x, int y, const Color& radiance, const AovSample& aov) {
@@ -208,6 +235,9 @@ std::vector<float> Film::resolveAov(AovKind kind) const {
                 continue;
             case AovKind::ObjectId:
                 px[0] = objectId_[i];
+                continue;
+            case AovKind::Samples:
+                px[0] = n;  // exact: counts stay far below 2^24 (kMaxSpp)
                 continue;
             case AovKind::Normal:
                 value = meanOf(normal_[i], samples_[i]);
@@ -290,6 +320,7 @@ FilmPixel Film::pixel(int x, int y) const {
         p.evenDepth = evenDepth_[i];
         p.evenAlbedo = evenAlbedo_[i];
     }
+    if (!converged_.empty()) p.converged = converged_[i];
     return p;
 }
 
@@ -314,6 +345,7 @@ void Film::setPixel(int x, int y, const FilmPixel& p) {
         evenDepth_[i] = p.evenDepth;
         evenAlbedo_[i] = p.evenAlbedo;
     }
+    if (!converged_.empty()) converged_[i] = p.converged;
 }
 
 void Film::merge(const Film& later, const std::string& source) {
@@ -324,6 +356,10 @@ void Film::merge(const Film& later, const std::string& source) {
     if (later.keepsHalves() != keepsHalves())
         fail(source, ": cannot merge a film that keeps the sample halves (--denoise) with one "
                      "that does not");
+    // Which pixels an adaptive render stops depends on all of its samples: the
+    // parts of one would not add up to it.
+    if (later.tracksConvergence() || tracksConvergence())
+        fail(source, ": cannot merge films rendered with adaptive sampling");
     for (size_t i = 0; i < samples_.size(); ++i) {
         const uint32_t na = samples_[i], nb = later.samples_[i];
         if (nb > ExactSum::kMaxSamples - na)
@@ -457,6 +493,7 @@ void Film::writeState(std::ostream& out) const {
     writeVector(out, evenNormal_);
     writeVector(out, evenDepth_);
     writeVector(out, evenAlbedo_);
+    writeVector(out, converged_);
 }
 
 void Film::readState(std::istream& in, const std::string& source) {
@@ -476,6 +513,7 @@ void Film::readState(std::istream& in, const std::string& source) {
     readVector(in, evenNormal_, source, "even normal");
     readVector(in, evenDepth_, source, "even depth");
     readVector(in, evenAlbedo_, source, "even albedo");
+    readVector(in, converged_, source, "converged");
 }
 
 }  // namespace strahl

@@ -144,6 +144,8 @@ const char* exrChannelSuffixes(AovKind kind) {
             return "X";
         case AovKind::Variance:
             return "RGB";
+        case AovKind::Samples:
+            return "X";
     }
     fail("invalid AovKind value ", static_cast<int>(kind));
 }
@@ -169,8 +171,9 @@ OIIO::ImageSpec exrSpec(const Film& film, const OutputSettings& settings,
         planes.push_back(film.resolveBeauty());
     }
     for (AovKind kind : film.aovs()) {
-        // Ids are always float: half holds integers exactly only up to 2048.
-        const OIIO::TypeDesc aovFormat = kind == AovKind::ObjectId ? OIIO::TypeDesc::FLOAT : format;
+        // Ids and counts are always float: half holds integers exactly only up to 2048.
+        const OIIO::TypeDesc aovFormat =
+            kind == AovKind::ObjectId || kind == AovKind::Samples ? OIIO::TypeDesc::FLOAT : format;
         for (const char* suffix = exrChannelSuffixes(kind); *suffix != '\0'; ++suffix) {
             names.push_back(concat(aovName(kind), ".", *suffix));
             formats.push_back(aovFormat);

@@ -100,6 +100,19 @@ void checkBeforeLoading(const RenderJob& job, const SceneDesc& desc,
     if (job.sampleOffset && (raster || job.distributed))
         fail("--sample-offset splits the samples of a local ray-traced render: --algorithm raster "
              "and --distributed do not apply to it");
+    if (desc.render.adaptiveThreshold > 0.0f) {
+        const char* why = raster ? "--algorithm raster renders one sample per pixel"
+                          : job.sampleOffset
+                              ? "--sample-offset: which pixels stop depends on all of a render's "
+                                "samples, so the parts of a split render would not add up to it"
+                          : job.distributed
+                              ? "--distributed renders every tile whole, in one go, and "
+                                "adaptive sampling decides between passes over the whole image"
+                              : nullptr;
+        if (why)
+            fail(job.scene.string(), ": /render/adaptive: adaptive sampling does not apply to ",
+                 why, "; turn it off (threshold 0) for this render");
+    }
     // Rank 0 alone cannot decide to skip: the workers would wait for it forever.
     if (job.distributed && job.skipExisting)
         fail("--skip-existing does not apply to --distributed: run it without, or check the "
@@ -201,10 +214,15 @@ ImageMetadata imageMetadata(const RenderJob& job, const SceneDocument& document,
         metadata.extra["clamp_indirect"] = std::to_string(desc.render.clampIndirect);
     if (desc.render.filterGlossy > 0.0f)
         metadata.extra["filter_glossy"] = std::to_string(desc.render.filterGlossy);
+    if (desc.render.adaptiveThreshold > 0.0f) {
+        metadata.extra["adaptive_threshold"] = std::to_string(desc.render.adaptiveThreshold);
+        metadata.extra["adaptive_min_samples"] = std::to_string(desc.render.adaptiveMinSamples);
+    }
     const bool partial = stats.cancelled || stats.stoppedEarly;
     if (job.algorithm == RenderAlgorithm::RayTrace) {
         // Every pixel has at least completedPasses samples; after an interrupt
-        // the tiles that were in flight have one more.
+        // the tiles that were in flight have one more. With adaptive sampling
+        // it is the most a pixel has, and the samples AOV has each one's.
         metadata.extra["samples"] = std::to_string(stats.completedPasses);
         metadata.extra["partial"] = partial ? "1" : "0";
         if (stats.cancelled) metadata.extra["stopped"] = signalName(InterruptGuard::signalNumber());
@@ -233,6 +251,8 @@ RenderOptions renderOptions(const RenderJob& job, const SceneDesc& desc, JobObse
     options.progress = &observer;
     options.sampleOffset = job.sampleOffset.value_or(0);
     options.samplePart = job.sampleOffset.has_value();
+    options.adaptive.threshold = desc.render.adaptiveThreshold;
+    options.adaptive.minSamples = desc.render.adaptiveMinSamples;
     return options;
 }
 
@@ -277,7 +297,11 @@ void rayTrace(const RenderJob& job, const SceneDesc& desc, const World& world,
         result.render = renderImage(world, camera, integrator, film, options);
     }
     // renderImage reports every pass but the last through passDone.
-    if (result.render.completedPasses == spp && samplesBefore < spp) observer.passDone(spp);
+    if ((result.render.completedPasses == spp || result.render.converged) && samplesBefore < spp)
+        observer.passDone(result.render.completedPasses);
+    if (result.render.converged)
+        observer.note(concat("adaptive sampling: every pixel converged after ",
+                             result.render.completedPasses, " of ", spp, " samples"));
     // The state at the end, complete or not, so nothing rendered is lost: an
     // interrupted render resumes from exactly where it stopped.
     if (job.checkpoint) writeCheckpoint(film, *job.checkpoint, fingerprint);
@@ -350,8 +374,13 @@ JobResult runRenderJob(const RenderJob& given, JobObserver& observer) {
     if (desc.render.denoise)  // the denoiser's features, written as EXR layers too
         for (AovKind kind : {AovKind::Normal, AovKind::Depth, AovKind::Albedo, AovKind::Variance})
             if (std::find(aovs.begin(), aovs.end(), kind) == aovs.end()) aovs.push_back(kind);
+    // Adaptive sampling writes how many samples each pixel took.
+    if (desc.render.adaptiveThreshold > 0.0f && !raster &&
+        std::find(aovs.begin(), aovs.end(), AovKind::Samples) == aovs.end())
+        aovs.push_back(AovKind::Samples);
     Film film(desc.film.width, desc.film.height, crop, aovs);
     if (desc.render.denoise) film.keepHalves(static_cast<uint32_t>(job.sampleOffset.value_or(0)));
+    if (desc.render.adaptiveThreshold > 0.0f && !raster) film.trackConvergence();
     if (raster) {
         rasterize(job, desc, world, camera, *integrator, film, observer, result);
     } else {

@@ -32,8 +32,17 @@ struct TileContext {
     const Integrator& integrator;
     Film& film;
     bool wantAovs;
+    bool adaptive;  // render only the pixels that still run (adaptive sampling)
     ShadingStats stats;
     uint64_t cameraRays = 0;
+
+    // Whether pixel (x, y) takes its sample `pass` (the film's count of it)
+    // now: with adaptive sampling, not once stopped, nor if it already has it
+    // (a resumed pass that an interrupt cut short).
+    bool wants(int x, int y, int pass) const {
+        return !adaptive ||
+               (!film.converged(x, y) && film.sampleCount(x, y) == static_cast<uint32_t>(pass));
+    }
 
     void shadeSample(int px, int py, const Ray& ray, const Hit& hit, Sampler& sampler) {
         const CameraSample sample =
@@ -42,39 +51,40 @@ struct TileContext {
     }
 };
 
-// Samples [s0, s1) of every pixel of `tile`.
+// Sample pass `pass` (the sampler's sample index `sample`) of every pixel of
+// `tile` that wants it.
 template <int N>
 void renderTilePackets(TileContext& ctx, const TileRayGenerator& gen, const PixelRect& tile,
-                       int s0, int s1) {
+                       int pass, int sample) {
     using Packet = CameraPacket<N>;
     Packet packet;
-    for (int s = s0; s < s1; ++s) {
-        for (int by = tile.y0; by < tile.y1; by += Packet::kBlockHeight) {
-            for (int bx = tile.x0; bx < tile.x1; bx += Packet::kBlockWidth) {
-                ctx.cameraRays += static_cast<uint64_t>(gen.fillPacket(tile, bx, by, s, packet));
-                ctx.world.accel->intersectPacket(packet.valid, packet.rays, RayCoherence::Coherent);
-                for (int lane = 0; lane < N; ++lane) {
-                    if (!packet.valid[lane]) continue;
-                    Ray ray = packet.rays.ray(lane);
-                    ray.tfar = kInfinity;  // the packet's tfar now holds the hit distance
-                    ctx.shadeSample(packet.px[lane], packet.py[lane], ray, packet.rays.hit(lane),
-                                    packet.sampler[lane]);
-                }
+    const auto wanted = [&](int x, int y) { return ctx.wants(x, y, pass); };
+    for (int by = tile.y0; by < tile.y1; by += Packet::kBlockHeight) {
+        for (int bx = tile.x0; bx < tile.x1; bx += Packet::kBlockWidth) {
+            const int active = gen.fillPacket(tile, bx, by, sample, packet, wanted);
+            if (active == 0) continue;
+            ctx.cameraRays += static_cast<uint64_t>(active);
+            ctx.world.accel->intersectPacket(packet.valid, packet.rays, RayCoherence::Coherent);
+            for (int lane = 0; lane < N; ++lane) {
+                if (!packet.valid[lane]) continue;
+                Ray ray = packet.rays.ray(lane);
+                ray.tfar = kInfinity;  // the packet's tfar now holds the hit distance
+                ctx.shadeSample(packet.px[lane], packet.py[lane], ray, packet.rays.hit(lane),
+                                packet.sampler[lane]);
             }
         }
     }
 }
 
 void renderTileSingle(TileContext& ctx, const TileRayGenerator& gen, const PixelRect& tile,
-                      int s0, int s1) {
+                      int pass, int sample) {
     Sampler sampler;
-    for (int s = s0; s < s1; ++s) {
-        for (int y = tile.y0; y < tile.y1; ++y) {
-            for (int x = tile.x0; x < tile.x1; ++x) {
-                const Ray ray = gen.sampleRay(x, y, s, sampler);
-                ++ctx.cameraRays;
-                ctx.shadeSample(x, y, ray, ctx.world.accel->intersect(ray), sampler);
-            }
+    for (int y = tile.y0; y < tile.y1; ++y) {
+        for (int x = tile.x0; x < tile.x1; ++x) {
+            if (!ctx.wants(x, y, pass)) continue;
+            const Ray ray = gen.sampleRay(x, y, sample, sampler);
+            ++ctx.cameraRays;
+            ctx.shadeSample(x, y, ray, ctx.world.accel->intersect(ray), sampler);
         }
     }
 }
@@ -83,10 +93,14 @@ void renderTileSingle(TileContext& ctx, const TileRayGenerator& gen, const Pixel
 
 int resolvePacketWidth(PacketMode mode, const Accel& accel) {
     switch (mode) {
-        case PacketMode::Packet8: return 8;
-        case PacketMode::Packet16: return 16;
-        case PacketMode::Single: return 1;
-        case PacketMode::Auto: break;
+        case PacketMode::Packet8:
+            return 8;
+        case PacketMode::Packet16:
+            return 16;
+        case PacketMode::Single:
+            return 1;
+        case PacketMode::Auto:
+            break;
     }
     // Embree emulates wider packets on narrower ISAs, so anything but 16 means 8.
     return accel.nativePacketWidth() == 16 ? 16 : 8;
@@ -95,7 +109,16 @@ int resolvePacketWidth(PacketMode mode, const Accel& accel) {
 // The samples every pixel of `tile` already has in the film (0 for a new film,
 // more when resuming from a checkpoint). Tiles are rendered whole, so all
 // pixels of a tile agree unless the film was made with another tile size.
-int tileStartSample(const Film& film, const PixelRect& tile) {
+int tileStartSample(const Film& film, const PixelRect& tile, int spp) {
+    if (film.tracksConvergence()) {
+        // Adaptive sampling: the first pass a running pixel of the tile lacks;
+        // spp if adaptive sampling stopped them all.
+        uint32_t first = static_cast<uint32_t>(spp);
+        for (int y = tile.y0; y < tile.y1; ++y)
+            for (int x = tile.x0; x < tile.x1; ++x)
+                if (!film.converged(x, y)) first = std::min(first, film.sampleCount(x, y));
+        return static_cast<int>(first);
+    }
     const uint32_t count = film.sampleCount(tile.x0, tile.y0);
     for (int y = tile.y0; y < tile.y1; ++y)
         for (int x = tile.x0; x < tile.x1; ++x)
@@ -116,6 +139,15 @@ RenderStats renderImage(const World& world, const Camera& camera, const Integrat
     if (options.sampleOffset < 0 || options.sampleOffset > INT32_MAX - options.spp)
         fail("sample offset ", options.sampleOffset, " with ", options.spp,
              " samples per pixel is out of range");
+    const AdaptiveSampling& adaptive = options.adaptive;
+    if (adaptive.enabled() != film.tracksConvergence())
+        fail(adaptive.enabled() ? "adaptive sampling needs a film that tracks convergence"
+                                : "the film tracks convergence but adaptive sampling is off");
+    if (adaptive.enabled() && (options.sampleOffset != 0 || options.samplePart))
+        fail("adaptive sampling does not split into sample ranges (--sample-offset)");
+    if (adaptive.enabled() && adaptive.minSamples < 2)
+        fail("adaptive sampling needs at least 2 samples per pixel before it stops one, got ",
+             adaptive.minSamples);
     // The generator only asks whether there is more than one sample per pixel
     // (one alone goes through the pixel centre); a part of a split render is
     // part of a render of many.
@@ -129,7 +161,7 @@ RenderStats renderImage(const World& world, const Camera& camera, const Integrat
     int firstPass = options.spp;
     size_t work = 0;  // tile passes still to render
     for (size_t i = 0; i < tiles.size(); ++i) {
-        tileStart[i] = tileStartSample(film, tiles[i]);
+        tileStart[i] = tileStartSample(film, tiles[i], options.spp);
         if (tileStart[i] > options.spp)
             fail("the film already has ", tileStart[i], " samples per pixel, more than the ",
                  options.spp, " asked for");
@@ -137,6 +169,16 @@ RenderStats renderImage(const World& world, const Camera& camera, const Integrat
         work += static_cast<size_t>(options.spp - tileStart[i]);
     }
     result.completedPasses = firstPass;
+    if (adaptive.enabled() && firstPass == options.spp) {
+        // Resumed from a film adaptive sampling has finished: its passes are
+        // the most samples a pixel took.
+        uint32_t most = 0;
+        for (int y = film.crop().y0; y < film.crop().y1; ++y)
+            for (int x = film.crop().x0; x < film.crop().x1; ++x)
+                most = std::max(most, film.sampleCount(x, y));
+        result.completedPasses = static_cast<int>(most);
+        result.converged = result.completedPasses < options.spp;
+    }
 
     std::atomic<uint64_t> cameraRays{0}, shadowRays{0}, bounceRays{0};
     std::atomic<bool> firstTile{true};
@@ -160,17 +202,19 @@ RenderStats renderImage(const World& world, const Camera& camera, const Integrat
                     for (size_t i = range.begin(); i != range.end(); ++i) {
                         // Tiles in flight finish; the rest of the pass is skipped.
                         if (tileStart[i] > pass || cancelled()) continue;
-                        TileContext ctx{world, integrator, film, !film.aovs().empty(), {}, 0};
+                        TileContext ctx{
+                            world, integrator, film, !film.aovs().empty(), adaptive.enabled(),
+                            {},    0};
                         const int sample = options.sampleOffset + pass;  // the sampler's index
                         switch (result.packetWidth) {
                             case 16:
-                                renderTilePackets<16>(ctx, generator, tiles[i], sample, sample + 1);
+                                renderTilePackets<16>(ctx, generator, tiles[i], pass, sample);
                                 break;
                             case 8:
-                                renderTilePackets<8>(ctx, generator, tiles[i], sample, sample + 1);
+                                renderTilePackets<8>(ctx, generator, tiles[i], pass, sample);
                                 break;
                             default:
-                                renderTileSingle(ctx, generator, tiles[i], sample, sample + 1);
+                                renderTileSingle(ctx, generator, tiles[i], pass, sample);
                                 break;
                         }
                         world.rethrowCutoutError();
@@ -188,12 +232,25 @@ RenderStats renderImage(const World& world, const Camera& camera, const Integrat
         });
         if (cancelled()) break;
         result.completedPasses = pass + 1;
+        // The decisions of this pass boundary, from the film alone, before a
+        // checkpoint (passDone) records them. Tiles whose pixels all stopped
+        // are not visited again.
+        if (adaptive.enabled() && pass + 1 >= adaptive.minSamples && pass + 1 < options.spp) {
+            const size_t running = stopConvergedPixels(film, adaptive, options.threads);
+            for (size_t i = 0; i < tiles.size(); ++i)
+                if (tileStart[i] <= pass)
+                    tileStart[i] = tileStartSample(film, tiles[i], options.spp);
+            if (running == 0) {
+                result.converged = true;
+                break;
+            }
+        }
         if (options.passDone && pass + 1 < options.spp && !options.passDone(pass + 1)) {
             result.stoppedEarly = true;
             break;
         }
     }
-    result.cancelled = cancelled() && result.completedPasses < options.spp;
+    result.cancelled = cancelled() && result.completedPasses < options.spp && !result.converged;
 
     if (options.progress) options.progress->end();
     result.seconds =

@@ -84,7 +84,8 @@ FilmDesc parseFilm(const JsonValue& v, const fs::path& folder) {
 RenderDesc parseRender(const JsonValue& v) {
     v.requireKeys({"integrator", "spp", "seed", "max_depth", "russian_roulette",
                    "russian_roulette_depth", "russian_roulette_threshold", "ao_distance", "ao_samples", "clamp_direct",
-                   "clamp_indirect", "filter_glossy", "light_selection", "hide_emitters", "denoise"});
+                   "clamp_indirect", "filter_glossy", "light_selection", "hide_emitters", "denoise",
+                   "adaptive"});
     RenderDesc r;
     if (auto integrator = v.find("integrator"))
         r.integrator = integrator->oneOf(integratorNames());
@@ -119,6 +120,18 @@ RenderDesc parseRender(const JsonValue& v) {
             *value = given->number();
             if (!(*value >= 0.0f)) given->fail("must be non-negative (0: off), got ", *value);
         }
+    if (auto adaptive = v.find("adaptive")) {
+        // {"threshold": t, "min_samples": n}: t > 0 turns it on (docs/adaptive.md).
+        if (!adaptive->raw().is_object())
+            adaptive->fail("expected {\"threshold\": T, \"min_samples\": N}, got ",
+                           adaptive->describe());
+        adaptive->requireKeys({"threshold", "min_samples"});
+        // Noise is a standard error in display units: 1 would stop a pixel
+        // whose noise spans the whole display range.
+        r.adaptiveThreshold = adaptive->get("threshold").numberIn(0.0f, 1.0f);
+        if (auto minSamples = adaptive->find("min_samples"))
+            r.adaptiveMinSamples = static_cast<int>(minSamples->integer(2, kMaxSpp));
+    }
     return r;
 }
 

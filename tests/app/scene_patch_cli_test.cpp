@@ -162,5 +162,32 @@ TEST(ScenePatchCli, FilterGlossyIsAPatchAndRecordedInTheImage) {
     EXPECT_FALSE(fs::exists(dir / "bad.exr"));
 }
 
+TEST(ScenePatchCli, AdaptiveSamplingFlagsArePatchesAndRecordedInTheImage) {
+    const fs::path dir = test::scratchDir("adaptive-cli");
+    test::writeFile(dir / "quad.json", kQuad);
+    const std::string scene = (dir / "quad.json").string() + " -q --integrator path --spp 8";
+    ASSERT_EQ(runStrahl("render " + scene + " --adaptive-threshold 0.25 --adaptive-min-samples 4 -o " +
+                        (dir / "flag.exr").string())
+                  .status,
+              0);
+    ASSERT_EQ(runStrahl("render " + scene +
+                        " --set '/render/adaptive={\"threshold\":0.25,\"min_samples\":4}' -o " +
+                        (dir / "set.exr").string())
+                  .status,
+              0);
+    const test::ExrFile flag = readExr(dir / "flag.exr"), set = readExr(dir / "set.exr");
+    test::expectIdentical(flag, set, "--adaptive-threshold and --set");
+    EXPECT_EQ(flag.fingerprint, set.fingerprint);
+    auto in = OIIO::ImageInput::open((dir / "flag.exr").string());
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->spec().get_string_attribute("strahl:adaptive_threshold"), "0.250000");
+    EXPECT_EQ(in->spec().get_string_attribute("strahl:adaptive_min_samples"), "4");
+    EXPECT_GE(in->spec().channelindex("samples.X"), 0);
+    const test::RunResult bad = runStrahl("render " + scene + " --adaptive-threshold 2 -o " +
+                                          (dir / "bad.exr").string());
+    EXPECT_EQ(bad.status, 2) << bad.err;
+    EXPECT_FALSE(fs::exists(dir / "bad.exr"));
+}
+
 }  // namespace
 }  // namespace strahl

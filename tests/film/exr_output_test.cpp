@@ -122,9 +122,9 @@ TEST(ExrOutput, EveryAovIsANamedLayer) {
     const std::set<std::string> expected{
         "R",          "G",          "B",          "normal.X",   "normal.Y",   "normal.Z",
         "depth.Z",    "albedo.R",   "albedo.G",   "albedo.B",   "position.X", "position.Y",
-        "position.Z", "objectid.X", "variance.R", "variance.G", "variance.B"};
+        "position.Z", "objectid.X", "variance.R", "variance.G", "variance.B", "samples.X"};
     EXPECT_EQ(names, expected);
-    EXPECT_EQ(image.spec.nchannels, 17);
+    EXPECT_EQ(image.spec.nchannels, 18);
 
     // Values: the mean position over hits, the first sample's id, the variance
     // of the mean (red: 1 and 3, s^2 = 2, / 2 samples = 1; green: constant).
@@ -139,16 +139,20 @@ TEST(ExrOutput, EveryAovIsANamedLayer) {
     EXPECT_EQ(image.at(1, 0, "objectid.X"), -1.0f);
     EXPECT_EQ(image.at(1, 0, "variance.B"), 0.0f);
     EXPECT_FLOAT_EQ(image.at(1, 0, "R"), 0.25f);
+    EXPECT_EQ(image.at(0, 0, "samples.X"), 2.0f);
+    EXPECT_EQ(image.at(1, 0, "samples.X"), 1.0f);
 }
 
-TEST(ExrOutput, ObjectIdIsFloatInAHalfFile) {
+TEST(ExrOutput, ObjectIdsAndSampleCountsAreFloatInAHalfFile) {
     const fs::path file = test::scratchDir("film-exr-objectid-float") / "ids.exr";
     writeImage(everyAovFilm(), file, {}, {});
     const ExrImage image = readExr(file);
 
-    ASSERT_EQ(image.spec.channelformats.size(), 17u);
+    ASSERT_EQ(image.spec.channelformats.size(), 18u);
     for (size_t c = 0; c < image.spec.channelnames.size(); ++c) {
-        const bool id = image.spec.channelnames[c] == "objectid.X";
+        // Counts too: half holds integers exactly only up to 2048.
+        const bool id = image.spec.channelnames[c] == "objectid.X" ||
+                        image.spec.channelnames[c] == "samples.X";
         EXPECT_EQ(image.spec.channelformats[c], id ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF)
             << image.spec.channelnames[c];
     }

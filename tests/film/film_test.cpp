@@ -43,8 +43,10 @@ TEST(Film, AovNamesAndChannelCounts) {
     EXPECT_EQ(aovChannels(AovKind::Position), 3);
     EXPECT_EQ(aovChannels(AovKind::ObjectId), 1);
     EXPECT_EQ(aovChannels(AovKind::Variance), 3);
+    EXPECT_STREQ(aovName(AovKind::Samples), "samples");
+    EXPECT_EQ(aovChannels(AovKind::Samples), 1);
     // aovNames() lists every kind in enum order, and aovFromName inverts it.
-    ASSERT_EQ(aovNames().size(), 6u);
+    ASSERT_EQ(aovNames().size(), 7u);
     for (size_t i = 0; i < aovNames().size(); ++i) {
         const std::optional<AovKind> kind = aovFromName(aovNames()[i]);
         ASSERT_TRUE(kind.has_value()) << aovNames()[i];

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <csignal>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -165,6 +166,35 @@ TEST(RenderJob, SigintStopsTheRenderWritesThePartialImageAndTheCheckpoint) {
     EXPECT_EQ(image.partial, "1");
     EXPECT_EQ(image.stopped, "SIGINT");
     EXPECT_TRUE(fs::exists(dir / "stopped.ckpt"));
+}
+
+TEST(RenderJob, AdaptiveSamplingResumesFromACheckpointWithItsStoppedPixels) {
+    const fs::path dir = test::scratchDir("job-adaptive");
+    const auto adaptiveJob = [&](const std::string& name) {
+        RenderJob job = roomJob(dir, name, 24);
+        job.patches.push_back(patch("/render/adaptive", R"({"threshold": 0.05, "min_samples": 4})"));
+        return job;
+    };
+    RecordingObserver observer;
+    runRenderJob(adaptiveJob("full"), observer);
+    const ExrFile full = readExr(dir / "full.exr");
+    ASSERT_TRUE(std::find(full.channels.begin(), full.channels.end(), "samples.X") !=
+                full.channels.end());
+    EXPECT_EQ(full.partial, "0");
+
+    // SIGINT after pass 6 (two rounds of decisions), then --resume.
+    RenderJob cut = adaptiveJob("cut");
+    cut.checkpoint = dir / "adaptive.ckpt";
+    cut.checkpointInterval = 1e9;
+    RecordingObserver interrupted;
+    interrupted.onPass = [](int done) {
+        if (done == 6) std::raise(SIGINT);
+    };
+    EXPECT_EQ(runRenderJob(cut, interrupted).report.stopped, "SIGINT");
+    RenderJob rest = adaptiveJob("resumed");
+    rest.resume = dir / "adaptive.ckpt";
+    runRenderJob(rest, observer);
+    expectIdentical(full, readExr(dir / "resumed.exr"), "resumed adaptive render");
 }
 
 TEST(RenderJob, SkipExistingRendersNothingWhenEveryOutputIsThereAndComplete) {

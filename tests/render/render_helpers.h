@@ -29,6 +29,8 @@ struct RenderSetup {
     std::optional<int> spp{};                 // default: desc.render.spp (one pass)
     std::optional<uint64_t> seed{};           // default: desc.render.seed
     std::optional<LightSampling> sampling{};  // default: buildIntegratorOptions' (MIS)
+    PacketMode packets = PacketMode::Auto;
+    AdaptiveSampling adaptive{};  // when enabled, the film tracks convergence
 };
 
 // The whole film of `desc` rendered as `setup` says: the scene built, its
@@ -47,7 +49,10 @@ inline Film renderFilm(const SceneDesc& desc, const RenderSetup& setup = {}) {
                        integratorOptions);
     Film film(desc.film.width, desc.film.height, PixelRect{0, 0, desc.film.width, desc.film.height},
               setup.aovs);
+    if (setup.adaptive.enabled()) film.trackConvergence();
     RenderOptions options;
+    options.packets = setup.packets;
+    options.adaptive = setup.adaptive;
     options.threads = setup.threads;
     options.tileSize = setup.tile;
     options.spp = setup.spp.value_or(desc.render.spp);

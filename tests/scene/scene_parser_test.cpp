@@ -420,7 +420,8 @@ TEST(SceneParser, UnknownKeysNameTheObjectAndTheAllowedKeys) {
               "scene.json: /render: unknown key 'samples' (allowed: integrator, spp, seed, "
               "max_depth, russian_roulette, russian_roulette_depth, russian_roulette_threshold, "
               "ao_distance, ao_samples, "
-              "clamp_direct, clamp_indirect, filter_glossy, light_selection, hide_emitters, denoise)");
+              "clamp_direct, clamp_indirect, filter_glossy, light_selection, hide_emitters, denoise, "
+              "adaptive)");
     EXPECT_EQ(errorWith(R"("materials": [{"name": "a", "colour": 1}])"),
               "scene.json: /materials/0: unknown key 'colour' for a diffuse material (allowed: "
               "name, type, emission, two_sided, normal_map, bump_map, mapping, opacity, opacity_cutoff, color, diffuse)");
@@ -519,7 +520,7 @@ TEST(SceneParser, EnumerationsListTheChoices) {
               "direct, ao, path, got 'whitted'");
     EXPECT_EQ(errorWith(R"("film": {"aovs": ["normal", "uv"]})"),
               "scene.json: /film/aovs/1: must be one of normal, depth, albedo, position, "
-              "objectid, variance, got 'uv'");
+              "objectid, variance, samples, got 'uv'");
     EXPECT_EQ(errorWith(R"("film": {"aovs": ["depth", "normal", "depth"]})"),
               "scene.json: /film/aovs/2: 'depth' is listed twice");
     EXPECT_EQ(errorWith(R"("film": {"outputs": ["a.png", "b.bmp"]})"),

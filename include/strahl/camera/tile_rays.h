@@ -46,9 +46,15 @@ public:
     Ray sampleRay(int px, int py, int s, Sampler& sampler) const;
 
     // Fills the packet for the block whose top-left pixel is (bx, by), clipped to
-    // `tile`. Returns the number of active lanes.
+    // `tile` and to the pixels for which wanted(x, y) is true (adaptive
+    // sampling skips the pixels it stopped). Returns the number of active lanes.
+    template <int N, typename Wanted>
+    int fillPacket(const PixelRect& tile, int bx, int by, int s, CameraPacket<N>& packet,
+                   const Wanted& wanted) const;
     template <int N>
-    int fillPacket(const PixelRect& tile, int bx, int by, int s, CameraPacket<N>& packet) const;
+    int fillPacket(const PixelRect& tile, int bx, int by, int s, CameraPacket<N>& packet) const {
+        return fillPacket(tile, bx, by, s, packet, [](int, int) { return true; });
+    }
 
     // Every packet of `tile` for sample `s`, blocks row by row: what fillPacket
     // makes, kept, for callers that trace the same rays more than once.
@@ -62,16 +68,16 @@ private:
     PixelFilter filter_;
 };
 
-template <int N>
+template <int N, typename Wanted>
 int TileRayGenerator::fillPacket(const PixelRect& tile, int bx, int by, int s,
-                                 CameraPacket<N>& packet) const {
+                                 CameraPacket<N>& packet, const Wanted& wanted) const {
     int active = 0;
     for (int lane = 0; lane < N; ++lane) {
         const int x = bx + lane % CameraPacket<N>::kBlockWidth;
         const int y = by + lane / CameraPacket<N>::kBlockWidth;
         packet.px[lane] = x;
         packet.py[lane] = y;
-        if (x < tile.x1 && y < tile.y1) {
+        if (x < tile.x1 && y < tile.y1 && wanted(x, y)) {
             packet.rays.setRay(lane, sampleRay(x, y, s, packet.sampler[lane]));
             packet.valid[lane] = -1;
             ++active;

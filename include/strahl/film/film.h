@@ -32,7 +32,7 @@ namespace strahl {
 
 // Arbitrary output variables written next to the beauty pass.
 // Unless stated, "samples" are those credited to the pixel.
-enum class AovKind {  // values 0 .. 5 in the order of aovNames()
+enum class AovKind {  // values 0 .. 6 in the order of aovNames()
     Normal,    // world-space shading normal of the first hit, mean over samples (0 for misses)
     Depth,     // ray distance to the first hit, mean over the samples that hit; +inf if none did
     Albedo,    // diffuse reflectance of the first hit, mean over samples (0 for misses)
@@ -41,13 +41,14 @@ enum class AovKind {  // values 0 .. 5 in the order of aovNames()
                // sample missed or the pixel has no samples
     Variance,  // per channel, the variance of the beauty mean: s^2 / n with s^2 the
                // sample variance of the n radiance values (Welford); 0 for n < 2
+    Samples,   // the number of samples credited to the pixel (adaptive sampling varies it)
 };
 
-// "normal", "depth", "albedo", "position", "objectid", "variance"
+// "normal", "depth", "albedo", "position", "objectid", "variance", "samples"
 const char* aovName(AovKind kind);
 std::span<const std::string_view> aovNames();  // every AOV's name, in enum order
 std::optional<AovKind> aovFromName(std::string_view name);
-int aovChannels(AovKind kind);      // 3, 1, 3, 3, 1, 3
+int aovChannels(AovKind kind);      // 3, 1, 3, 3, 1, 3, 1
 
 // First-hit values of one camera sample, for the AOVs. Only `hit` is read for a
 // miss; the radiance for the variance AOV comes from addSample.
@@ -81,6 +82,7 @@ struct FilmPixel {
     ExactSum3 evenNormal{};
     ExactSum evenDepth{};
     ExactSum3 evenAlbedo{};
+    uint8_t converged = 0;  // adaptive sampling has stopped the pixel (Film::trackConvergence)
 };
 
 class Film {
@@ -112,6 +114,27 @@ public:
 
     // Samples accumulated so far in pixel (x, y) (full-image coordinates).
     uint32_t sampleCount(int x, int y) const { return samples_[index(x, y)]; }
+
+    // Adaptive sampling (render/adaptive_sampling.h): also keeps the
+    // radiance's running mean and variance (as the variance AOV does, whether
+    // or not that AOV is written) and a per-pixel flag "converged", which
+    // stops a pixel for the rest of the render. The flag is part of the
+    // accumulation state: checkpoints and packed tiles carry it, so a resumed
+    // or distributed render stops the same pixels. Call before the first sample.
+    void trackConvergence();
+    bool tracksConvergence() const { return !converged_.empty(); }
+    bool converged(int x, int y) const {
+        return !converged_.empty() && converged_[index(x, y)] != 0;
+    }
+    void setConverged(int x, int y) { converged_.at(index(x, y)) = 1; }
+    // The running mean of the pixel's radiance and the variance of that mean
+    // (0 for fewer than 2 samples); needs the variance AOV or trackConvergence.
+    struct Estimate {
+        uint32_t samples = 0;
+        Color mean{0.0f};
+        Color varianceOfMean{0.0f};
+    };
+    Estimate estimate(int x, int y) const;
 
     // The complete accumulation state, for checkpoints (film/checkpoint.h):
     // written raw and read back bit for bit, so a resumed render continues
@@ -160,12 +183,12 @@ private:
     auto buffers() const {
         return std::tie(radiance_, samples_, hits_, normal_, depth_, albedo_, position_,
                         objectId_, mean_, m2_, evenSamples_, evenHits_, evenRadiance_,
-                        evenNormal_, evenDepth_, evenAlbedo_);
+                        evenNormal_, evenDepth_, evenAlbedo_, converged_);
     }
     auto buffers() {
         return std::tie(radiance_, samples_, hits_, normal_, depth_, albedo_, position_,
                         objectId_, mean_, m2_, evenSamples_, evenHits_, evenRadiance_,
-                        evenNormal_, evenDepth_, evenAlbedo_);
+                        evenNormal_, evenDepth_, evenAlbedo_, converged_);
     }
 
 
@@ -190,6 +213,7 @@ private:
     std::vector<ExactSum3> evenNormal_;
     std::vector<ExactSum> evenDepth_;
     std::vector<ExactSum3> evenAlbedo_;
+    std::vector<uint8_t> converged_;  // trackConvergence: 1 once adaptive sampling stopped the pixel
 };
 
 }  // namespace strahl

@@ -17,6 +17,7 @@
 #include "strahl/film/film.h"
 #include "strahl/integrator/integrator.h"
 #include "strahl/integrator/world.h"
+#include "strahl/render/adaptive_sampling.h"
 #include "strahl/render/progress.h"
 
 namespace strahl {
@@ -51,6 +52,10 @@ struct RenderOptions {
     // one sample alone shoots it through the pixel centre), so that every
     // part's samples are those of the whole.
     bool samplePart = false;
+    // Stop pixels whose noise is below a threshold (adaptive_sampling.h); the
+    // film must track convergence (Film::trackConvergence). spp is then the
+    // most samples a pixel takes. Not with sampleOffset/samplePart.
+    AdaptiveSampling adaptive;
 };
 
 struct RenderStats {
@@ -61,9 +66,12 @@ struct RenderStats {
     uint64_t bounceRays = 0;  // secondary rays that continue paths
     uint64_t totalRays() const { return cameraRays + shadowRays + bounceRays; }
     int packetWidth = 1;  // the width actually used
-    int completedPasses = 0;  // samples per pixel every pixel has (after a resume: in all)
+    // Sample passes done (after a resume: in all): every pixel has this many
+    // samples, except those adaptive sampling stopped earlier.
+    int completedPasses = 0;
     bool cancelled = false;   // stopped by `cancel` before the last pass
     bool stoppedEarly = false;  // stopped by passDone returning false
+    bool converged = false;   // adaptive sampling stopped every pixel before the last pass
 };
 
 // The tiles of `crop`, size x size pixels (smaller at the right and bottom

@@ -109,6 +109,11 @@ struct RenderDesc {
     // Keep the even and odd samples' halves and write the NFOR-denoised beauty
     // as the main image (docs/denoising.md); ray tracing, at least 2 spp.
     bool denoise = false;
+    // Adaptive sampling (render/adaptive_sampling.h, docs/adaptive.md): a
+    // pixel stops once its noise and its neighbours' is below the threshold,
+    // after at least min_samples samples; spp is then the most any pixel takes.
+    float adaptiveThreshold = 0.0f;  // 0: off
+    int adaptiveMinSamples = 16;
 };
 
 struct MaterialDesc {
