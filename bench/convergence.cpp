@@ -1,0 +1,361 @@
+// bench_convergence: time to a clean image (issue 20, part 6).
+//
+// For each scene, renders of increasing effort are compared with a converged
+// reference: fixed sampling at 4, 8, ... spp, and adaptive sampling
+// (docs/adaptive.md) at decreasing thresholds. Each render gives a point
+// (render time from --stats, relative RMSE against the reference), where
+//     relRMSE = sqrt(mean over pixels and channels of (x - ref)^2 / (ref^2 + 0.01))
+// weighs bright and dark pixels alike (the 0.01 keeps black pixels from
+// dividing by zero; the same measure as bench_roulette's relVar).
+//
+// The figure of merit is the time each method needs to reach a given error:
+// the error fixed sampling reaches at --target-spp (64), read off each
+// method's error-time curve by interpolating between the two renders around
+// it on log-log axes (error falls as a power of time). speed-up = time of
+// fixed sampling / time of adaptive sampling at that error.
+//
+// The reference renders with --reference-spp samples (16384) and another seed
+// than the measured renders, once: it is cached outside the repository
+// (~/.cache/strahl/bench_convergence, or --cache DIR), keyed by the scene
+// file's contents, the size and the spp. Its own relative RMSE is about
+// that of the 64-spp render divided by 16, small beside the errors measured.
+//
+// The scenes: the sphere scene of bench/peer_embree_tutorials.sh (the OBJ it
+// caches; an implicit sphere stands in if that script has not run), the
+// default Cornell box, and Sponza when ../shared/data is present. --svg FILE
+// draws the curves (docs/images/convergence.svg).
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli_render.h"
+#include "strahl/core/error.h"
+
+namespace fs = std::filesystem;
+using namespace strahl;
+
+namespace {
+
+struct Options {
+    int width = 160, height = 120;
+    int referenceSpp = 16384;
+    int targetSpp = 64;
+    std::vector<int> fixedSpp{4, 8, 16, 32, 64, 128, 256};
+    std::vector<float> thresholds{0.08f, 0.04f, 0.02f, 0.01f, 0.005f};
+    int adaptiveBudget = 1024;  // the most samples an adaptive pixel takes
+    fs::path cache;
+    fs::path svg;
+    std::vector<std::string> only;  // scene names; empty: all
+};
+
+struct BenchScene {
+    std::string name;
+    fs::path file;
+};
+
+struct Point {
+    std::string setting;  // "16 spp" or "t 0.02"
+    double seconds = 0.0;
+    double error = 0.0;  // relRMSE
+    double samples = 0.0;  // mean samples per pixel
+};
+
+struct Curve {
+    std::string scene, method;
+    std::vector<Point> points;  // in order of effort
+};
+
+// The implicit stand-in for the 2M-triangle sphere (the same scene as
+// bench_roulette's open scene: roulette and convergence do not care how the
+// sphere is made).
+void writeImplicitSphereScene(const fs::path& file) {
+    std::ofstream out(file);
+    out << R"({
+  "camera": { "eye": [0, 1.6, 4.5], "look_at": [0, 0.9, 0], "up": [0, 1, 0], "fov": 40 },
+  "film": { "width": 512, "height": 512 },
+  "render": { "integrator": "path", "spp": 16, "max_depth": 8 },
+  "materials": [ { "name": "grey", "color": 0.8 } ],
+  "shapes": [
+    { "type": "implicit", "surface": { "type": "sphere", "radius": 1 },
+      "transform": [ { "translate": [0, 1, 0] } ], "material": "grey" },
+    { "type": "mesh", "material": "grey",
+      "positions": [[-10, 0, -10], [10, 0, -10], [10, 0, 10], [-10, 0, 10]],
+      "indices": [0, 3, 2, 0, 2, 1] }
+  ],
+  "lights": [ { "type": "point", "position": [3, 5, 4], "intensity": 40 } ]
+}
+)";
+    if (!out) fail(file.string(), ": cannot write");
+}
+
+std::string fileHash(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) fail(file.string(), ": cannot read");
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    uint64_t h = 1469598103934665603ull;  // FNV-1a, 64 bit
+    for (unsigned char c : bytes.str()) h = (h ^ c) * 1099511628211ull;
+    char text[17];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
+    return text;
+}
+
+double mean(const std::vector<float>& v) {
+    double s = 0.0;
+    for (float x : v) s += x;
+    return v.empty() ? 0.0 : s / double(v.size());
+}
+
+double relativeRmse(const std::vector<float>& image, const std::vector<float>& reference) {
+    if (image.size() != reference.size()) fail("image and reference differ in size");
+    double sum = 0.0;
+    for (size_t i = 0; i < image.size(); ++i) {
+        const double d = double(image[i]) - reference[i];
+        sum += d * d / (double(reference[i]) * reference[i] + 0.01);
+    }
+    return std::sqrt(sum / double(image.size()));
+}
+
+// The time `curve` needs to reach `error`, interpolated on log-log axes
+// between the two points around it; negative if the curve never gets there.
+double timeToError(const Curve& curve, double error) {
+    const std::vector<Point>& p = curve.points;
+    for (size_t i = 1; i < p.size(); ++i) {
+        if (p[i].error > error) continue;
+        if (p[i - 1].error <= error) return p[i - 1].seconds;  // already there before
+        const double f = std::log(p[i - 1].error / error) / std::log(p[i - 1].error / p[i].error);
+        return std::exp(std::log(p[i - 1].seconds) +
+                        f * (std::log(p[i].seconds) - std::log(p[i - 1].seconds)));
+    }
+    return p.empty() || p.front().error > error ? -1.0 : p.front().seconds;
+}
+
+// Log-log plot of every curve: one colour per scene, fixed solid, adaptive dashed.
+void writeSvg(const fs::path& file, const std::vector<Curve>& curves, const Options& o) {
+    double tMin = 1e30, tMax = 0.0, eMin = 1e30, eMax = 0.0;
+    for (const Curve& c : curves)
+        for (const Point& p : c.points) {
+            tMin = std::min(tMin, p.seconds);
+            tMax = std::max(tMax, p.seconds);
+            eMin = std::min(eMin, p.error);
+            eMax = std::max(eMax, p.error);
+        }
+    // Whole decades around the data.
+    const double lt0 = std::floor(std::log10(tMin)), lt1 = std::ceil(std::log10(tMax));
+    const double le0 = std::floor(std::log10(eMin)), le1 = std::ceil(std::log10(eMax));
+    const double left = 70, right = 620, top = 30, bottom = 380;
+    const auto x = [&](double t) { return left + (std::log10(t) - lt0) / (lt1 - lt0) * (right - left); };
+    const auto y = [&](double e) { return bottom - (std::log10(e) - le0) / (le1 - le0) * (bottom - top); };
+    std::ofstream out(file);
+    out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"820\" height=\"430\" "
+           "font-family=\"sans-serif\" font-size=\"12\">\n"
+        << "<rect width=\"820\" height=\"430\" fill=\"white\"/>\n";
+    for (double d = lt0; d <= lt1; ++d) {
+        out << "<line x1=\"" << x(std::pow(10, d)) << "\" y1=\"" << top << "\" x2=\""
+            << x(std::pow(10, d)) << "\" y2=\"" << bottom << "\" stroke=\"#ddd\"/>\n"
+            << "<text x=\"" << x(std::pow(10, d)) << "\" y=\"" << bottom + 16
+            << "\" text-anchor=\"middle\">" << std::pow(10, d) << "</text>\n";
+    }
+    for (double d = le0; d <= le1; ++d)
+        out << "<line x1=\"" << left << "\" y1=\"" << y(std::pow(10, d)) << "\" x2=\"" << right
+            << "\" y2=\"" << y(std::pow(10, d)) << "\" stroke=\"#ddd\"/>\n"
+            << "<text x=\"" << left - 6 << "\" y=\"" << y(std::pow(10, d)) + 4
+            << "\" text-anchor=\"end\">" << std::pow(10, d) << "</text>\n";
+    out << "<text x=\"" << (left + right) / 2 << "\" y=\"" << bottom + 36
+        << "\" text-anchor=\"middle\">render time (s), " << o.width << "x" << o.height
+        << ", log scale</text>\n"
+        << "<text x=\"16\" y=\"" << (top + bottom) / 2 << "\" transform=\"rotate(-90 16 "
+        << (top + bottom) / 2 << ")\" text-anchor=\"middle\">relative RMSE vs " << o.referenceSpp
+        << " spp, log scale</text>\n";
+    const char* colours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e"};
+    std::vector<std::string> scenes;
+    double legendY = top + 10;
+    for (const Curve& c : curves) {
+        auto it = std::find(scenes.begin(), scenes.end(), c.scene);
+        if (it == scenes.end()) {
+            scenes.push_back(c.scene);
+            it = scenes.end() - 1;
+        }
+        const char* colour = colours[size_t(it - scenes.begin()) % std::size(colours)];
+        const bool dashed = c.method != "fixed";
+        out << "<polyline fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"2\""
+            << (dashed ? " stroke-dasharray=\"6 4\"" : "") << " points=\"";
+        for (const Point& p : c.points) out << x(p.seconds) << "," << y(p.error) << " ";
+        out << "\"/>\n";
+        for (const Point& p : c.points)
+            out << "<circle cx=\"" << x(p.seconds) << "\" cy=\"" << y(p.error)
+                << "\" r=\"3\" fill=\"" << colour << "\"/>\n";
+        out << "<line x1=\"640\" y1=\"" << legendY << "\" x2=\"670\" y2=\"" << legendY
+            << "\" stroke=\"" << colour << "\" stroke-width=\"2\""
+            << (dashed ? " stroke-dasharray=\"6 4\"" : "") << "/>\n"
+            << "<text x=\"676\" y=\"" << legendY + 4 << "\">" << c.scene << ", " << c.method
+            << "</text>\n";
+        legendY += 18;
+    }
+    out << "</svg>\n";
+    if (!out) fail(file.string(), ": cannot write");
+}
+
+Options parse(int argc, char** argv) {
+    Options o;
+    const char* home = std::getenv("HOME");
+    const char* xdg = std::getenv("XDG_CACHE_HOME");
+    o.cache = fs::path(xdg ? xdg : (std::string(home ? home : "/tmp") + "/.cache")) / "strahl";
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        const auto next = [&]() -> std::string {
+            if (i + 1 >= argc) fail(a, " needs a value");
+            return argv[++i];
+        };
+        if (a == "--width")
+            o.width = std::stoi(next());
+        else if (a == "--height")
+            o.height = std::stoi(next());
+        else if (a == "--reference-spp")
+            o.referenceSpp = std::stoi(next());
+        else if (a == "--target-spp")
+            o.targetSpp = std::stoi(next());
+        else if (a == "--cache")
+            o.cache = next();
+        else if (a == "--svg")
+            o.svg = next();
+        else if (a == "--scene")
+            o.only.push_back(next());
+        else
+            fail("usage: bench_convergence [--width W] [--height H] [--reference-spp N] "
+                 "[--target-spp N] [--cache DIR] [--svg FILE] [--scene NAME]...");
+    }
+    if (o.width < 1 || o.height < 1 || o.referenceSpp < 1 || o.targetSpp < 1)
+        fail("bench_convergence: sizes and sample counts must be >= 1");
+    return o;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) try {
+    std::setvbuf(stdout, nullptr, _IOLBF, 0);
+    const Options o = parse(argc, argv);
+    const fs::path source = STRAHL_SOURCE_DIR;
+    const fs::path work =
+        fs::temp_directory_path() / ("bench_convergence-" + std::to_string(getpid()));
+    fs::create_directories(work);
+    const fs::path references = o.cache / "bench_convergence";
+    fs::create_directories(references);
+
+    std::vector<BenchScene> scenes;
+    const fs::path peerSphere = o.cache / "peer_embree/sphere_scene.json";
+    if (fs::exists(peerSphere)) {
+        scenes.push_back({"sphere", peerSphere});
+    } else {
+        std::printf("sphere: the 2M-triangle OBJ of bench/peer_embree_tutorials.sh is not cached "
+                    "(run that script once); an implicit sphere stands in\n");
+        writeImplicitSphereScene(work / "sphere.json");
+        scenes.push_back({"sphere", work / "sphere.json"});
+    }
+    scenes.push_back({"default", source / "scenes/default.json"});
+    if (fs::exists(source / "../shared/data"))
+        scenes.push_back({"sponza", source / "scenes/showcase/sponza.json"});
+    else
+        std::printf("sponza: skipped: ../shared/data is not there\n");
+    if (!o.only.empty())
+        scenes.erase(std::remove_if(scenes.begin(), scenes.end(),
+                                    [&](const BenchScene& s) {
+                                        return std::find(o.only.begin(), o.only.end(), s.name) ==
+                                               o.only.end();
+                                    }),
+                     scenes.end());
+
+    const std::vector<std::string> size{"--width", std::to_string(o.width), "--height",
+                                        std::to_string(o.height)};
+    std::printf("bench_convergence: %dx%d, relative RMSE against %d spp references (cached in "
+                "%s); target error: fixed sampling's at %d spp\n",
+                o.width, o.height, o.referenceSpp, references.c_str(), o.targetSpp);
+    std::printf("%-8s %-9s %-8s %10s %9s %8s\n", "scene", "method", "setting", "mean spp",
+                "render s", "relRMSE");
+    std::vector<Curve> curves;
+    bool allFaster = true;
+    for (const BenchScene& s : scenes) {
+        const fs::path reference =
+            references / (s.name + "-" + fileHash(s.file) + "-" + std::to_string(o.width) + "x" +
+                          std::to_string(o.height) + "-" + std::to_string(o.referenceSpp) + ".exr");
+        if (!fs::exists(reference)) {
+            std::printf("%s: rendering the %d-spp reference (once)...\n", s.name.c_str(),
+                        o.referenceSpp);
+            std::vector<std::string> args = size;
+            // Another seed than the measured renders (seed 1), so its noise is independent.
+            args.insert(args.end(), {"--spp", std::to_string(o.referenceSpp), "--seed", "977"});
+            const fs::path partial = work / "reference.exr";
+            bench::renderWithCli(s.file, partial, args);
+            fs::copy_file(partial, reference, fs::copy_options::overwrite_existing);
+        }
+        const std::vector<float> ref = bench::rgb(bench::readChannels(reference), "");
+
+        const auto measure = [&](const std::string& setting, std::vector<std::string> args) {
+            args.insert(args.begin(), size.begin(), size.end());
+            args.insert(args.end(), {"--seed", "1"});
+            const fs::path out = work / "image.exr";
+            Point p;
+            p.setting = setting;
+            p.seconds = bench::renderWithCli(s.file, out, args).render;
+            const bench::Channels c = bench::readChannels(out);
+            p.error = relativeRmse(bench::rgb(c, ""), ref);
+            const auto count = c.find("samples.X");
+            p.samples = count != c.end() ? mean(count->second) : 0.0;  // fixed: set by the caller
+            return p;
+        };
+        Curve fixed{s.name, "fixed", {}}, adaptive{s.name, "adaptive", {}};
+        for (int spp : o.fixedSpp) {
+            Point p = measure(std::to_string(spp) + " spp", {"--spp", std::to_string(spp)});
+            p.samples = spp;
+            fixed.points.push_back(p);
+        }
+        for (float t : o.thresholds) {
+            char name[16];
+            std::snprintf(name, sizeof name, "t %.3g", double(t));
+            adaptive.points.push_back(measure(name, {"--spp", std::to_string(o.adaptiveBudget),
+                                                     "--adaptive-threshold", std::to_string(t)}));
+        }
+        for (const Curve* c : {&fixed, &adaptive})
+            for (const Point& p : c->points)
+                std::printf("%-8s %-9s %-8s %10.1f %9.3f %8.4f\n", s.name.c_str(), c->method.c_str(),
+                            p.setting.c_str(), p.samples, p.seconds, p.error);
+        const auto target = std::find_if(fixed.points.begin(), fixed.points.end(), [&](const Point& p) {
+            return p.samples == o.targetSpp;
+        });
+        if (target == fixed.points.end()) fail("--target-spp must be one of the fixed sample counts");
+        const double tFixed = timeToError(fixed, target->error);
+        const double tAdaptive = timeToError(adaptive, target->error);
+        if (tAdaptive > 0.0) {
+            std::printf("%-8s time to relRMSE %.4f: fixed %.3f s, adaptive %.3f s: speed-up %.2f\n",
+                        s.name.c_str(), target->error, tFixed, tAdaptive, tFixed / tAdaptive);
+            allFaster = allFaster && tAdaptive < tFixed;
+        } else {
+            std::printf("%-8s time to relRMSE %.4f: fixed %.3f s, adaptive does not reach it\n",
+                        s.name.c_str(), target->error, tFixed);
+            allFaster = false;
+        }
+        curves.push_back(fixed);
+        curves.push_back(adaptive);
+    }
+    if (!o.svg.empty()) {
+        writeSvg(o.svg, curves, o);
+        std::printf("wrote %s\n", o.svg.c_str());
+    }
+    std::printf("speed-up = time of fixed sampling / time of adaptive sampling to the same "
+                "relRMSE (> 1: adaptive is faster)\n");
+    fs::remove_all(work);
+    return allFaster ? 0 : 1;
+} catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_convergence: error: %s\n", e.what());
+    return 2;
+}
