@@ -51,7 +51,7 @@ struct Options {
     int referenceSpp = 16384;
     int targetSpp = 64;
     std::vector<int> fixedSpp{4, 8, 16, 32, 64, 128, 256};
-    std::vector<float> thresholds{0.08f, 0.04f, 0.02f, 0.01f, 0.005f};
+    std::vector<float> thresholds{0.08f, 0.04f, 0.03f, 0.02f, 0.015f, 0.01f};
     int adaptiveBudget = 1024;  // the most samples an adaptive pixel takes
     fs::path cache;
     fs::path svg;

@@ -3,6 +3,7 @@
 
 #include "strahl/integrator/light.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -47,7 +48,7 @@ LightSet::LightSet(std::vector<Light> lights, const Bounds3& sceneBounds)
 
 LightSet::LightSet(std::vector<Light> lights, const Bounds3& sceneBounds, LightSelection selection,
                    const std::vector<uint32_t>& emitterOf)
-    : lights_(std::move(lights)) {
+    : lights_(std::move(lights)), selection_(selection) {
     if (lights_.empty()) return;
     if (lights_.size() > UINT32_MAX) fail("too many lights: ", lights_.size());
     std::vector<float> powers(lights_.size());
@@ -57,6 +58,17 @@ LightSet::LightSet(std::vector<Light> lights, const Bounds3& sceneBounds, LightS
         if (!std::isfinite(powers[i]) || powers[i] < 0.0f)
             fail("light ", i, ": power ", powers[i], " is not finite and >= 0");
         if (lights_[i].isInfinite()) infinite_.push_back(static_cast<uint32_t>(i));
+    }
+    if (selection == LightSelection::Bvh) {
+        std::vector<LightBounds> bounds;
+        std::vector<uint32_t> index;
+        for (size_t i = 0; i < lights_.size(); ++i)
+            if (const auto b = boundsOf(lights_[i], powers[i])) {
+                bounds.push_back(*b);
+                index.push_back(static_cast<uint32_t>(i));
+            }
+        bvh_ = LightBvh(std::move(bounds), std::move(index));
+        return;
     }
     if (selection == LightSelection::UniformEmitters) {
         if (emitterOf.size() != lights_.size())
@@ -78,14 +90,44 @@ LightSet::LightSet(std::vector<Light> lights, const Bounds3& sceneBounds, LightS
     distribution_ = Distribution1D(std::move(powers));  // all zero: uniform
 }
 
-std::optional<std::pair<uint32_t, float>> LightSet::choose(float u) const {
+// Bvh: each infinite light and the tree as a whole are chosen equally often
+// (pbrt-v4's rule: the tree's importances cannot be compared with a light at
+// infinity); `choices` counts them.
+namespace {
+size_t bvhChoices(const std::vector<uint32_t>& infinite, const LightBvh& bvh) {
+    return infinite.size() + (bvh.empty() ? 0 : 1);
+}
+}  // namespace
+
+std::optional<std::pair<uint32_t, float>> LightSet::choose(float u,
+                                                           const LightSampleContext& at) const {
     if (lights_.empty()) return std::nullopt;
+    if (selection_ == LightSelection::Bvh) {
+        const size_t choices = bvhChoices(infinite_, bvh_);
+        if (choices == 0) return std::nullopt;
+        const float scaled = u * float(choices);
+        const size_t pick = std::min(static_cast<size_t>(scaled), choices - 1);
+        const float share = 1.0f / float(choices);
+        if (pick < infinite_.size()) return std::make_pair(infinite_[pick], share);
+        // The rest of u, rescaled to [0, 1), walks the tree.
+        const float rest = std::min(scaled - float(pick), 0x1.fffffep-1f);
+        auto choice = bvh_.choose(rest, at.p, at.n);
+        if (choice) choice->second *= share;
+        return choice;
+    }
     float pmf;
     const size_t index = distribution_.sampleDiscrete(u, pmf);
     return std::make_pair(static_cast<uint32_t>(index), pmf);
 }
 
-float LightSet::pmf(uint32_t index) const {
+float LightSet::pmf(uint32_t index, const LightSampleContext& at) const {
+    if (selection_ == LightSelection::Bvh) {
+        const size_t choices = bvhChoices(infinite_, bvh_);
+        if (choices == 0 || index >= lights_.size()) return 0.0f;
+        const float share = 1.0f / float(choices);
+        if (lights_[index].isInfinite()) return share;
+        return bvh_.pmf(index, at.p, at.n) * share;
+    }
     return distribution_.pmf(index);
 }
 

@@ -83,7 +83,7 @@ Color PathIntegrator::shade(const World& world, const SurfaceHit& first, Sampler
             if (depth == 0 || specularBounce || light == kInvalidId) return 1.0f;
             if (mode == LightSampling::BsdfOnly) return 1.0f;
             if (mode == LightSampling::LightOnly) return 0.0f;
-            const float lightPdf = world.lightSet.pmf(light) *
+            const float lightPdf = world.lightSet.pmf(light, prevContext) *
                                    pdfLi(world.lightSet.lights()[light], prevContext, dir, pLight);
             return powerHeuristic(1, prevBsdfPdf, 1, lightPdf);
         };

@@ -109,7 +109,7 @@ Color sampleDirectLight(const World& world, const ShadingContext& ctx, Sampler& 
                         LightSampling sampling, ShadingStats& stats) {
     const float uLight = sampler.get1D();
     const Vec2 u = sampler.get2D();
-    const auto choice = world.lightSet.choose(uLight);
+    const auto choice = world.lightSet.choose(uLight, ctx.lightContext());
     if (!choice) return Color(0.0f);
     return estimateLight(world, ctx, world.lightSet.lights()[choice->first], u, choice->second,
                          sampling, stats);

@@ -3,7 +3,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -21,48 +20,50 @@ float pixelNoise(const Film& film, int x, int y) {
                          std::sqrt(e.varianceOfMean.b)) /
                         3.0f;
     if (error == 0.0f) return 0.0f;  // every sample the same (black, or a flat emitter)
-    // The floor keeps the quotient finite for a mean that rounds to 0; below it
-    // a pixel is darker than any display shows (1e-8 is 1e-4 after the root).
-    return error / (2.0f * std::sqrt(std::max(mean, 1e-8f)));
+    return error / std::sqrt(mean * mean + kDarkFloor * kDarkFloor);
 }
 
-size_t stopConvergedPixels(Film& film, const AdaptiveSampling& adaptive, int threads) {
+size_t stopConvergedPixels(Film& film, const AdaptiveSampling& adaptive) {
     if (!film.tracksConvergence()) fail("adaptive sampling: the film does not track convergence");
     const PixelRect crop = film.crop();
     const int width = crop.width(), height = crop.height();
-    std::vector<float> noise(static_cast<size_t>(width) * static_cast<size_t>(height));
-    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-    return arena.execute([&] {
-        tbb::parallel_for(tbb::blocked_range<int>(0, height),
-                          [&](const tbb::blocked_range<int>& rows) {
-                              for (int y = rows.begin(); y != rows.end(); ++y)
-                                  for (int x = 0; x < width; ++x)
-                                      noise[size_t(y) * size_t(width) + size_t(x)] =
-                                          pixelNoise(film, crop.x0 + x, crop.y0 + y);
-                          });
-        // Each row only writes its own pixels' flags and reads the noise
-        // computed above: the result does not depend on the partition.
-        return tbb::parallel_reduce(
-            tbb::blocked_range<int>(0, height), size_t{0},
-            [&](const tbb::blocked_range<int>& rows, size_t running) {
-                for (int y = rows.begin(); y != rows.end(); ++y)
-                    for (int x = 0; x < width; ++x) {
-                        if (film.converged(crop.x0 + x, crop.y0 + y)) continue;
-                        float worst = 0.0f;
-                        for (int ny = std::max(y - 1, 0); ny <= std::min(y + 1, height - 1); ++ny)
-                            for (int nx = std::max(x - 1, 0); nx <= std::min(x + 1, width - 1);
-                                 ++nx)
-                                worst =
-                                    std::max(worst, noise[size_t(ny) * size_t(width) + size_t(nx)]);
-                        if (worst < adaptive.threshold)
-                            film.setConverged(crop.x0 + x, crop.y0 + y);
-                        else
-                            ++running;
-                    }
-                return running;
-            },
-            [](size_t a, size_t b) { return a + b; });
+    const auto at = [&](int x, int y) { return size_t(y) * size_t(width) + size_t(x); };
+    // The noise of the pixels a running pixel's decision reads (itself and
+    // its neighbours); stopped regions cost nothing. NaN: not needed.
+    std::vector<float> noise(size_t(width) * size_t(height), std::nanf(""));
+    tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
+        for (int y = rows.begin(); y != rows.end(); ++y)
+            for (int x = 0; x < width; ++x) {
+                bool needed = false;
+                for (int ny = std::max(y - 1, 0); ny <= std::min(y + 1, height - 1) && !needed; ++ny)
+                    for (int nx = std::max(x - 1, 0); nx <= std::min(x + 1, width - 1); ++nx)
+                        if (!film.converged(crop.x0 + nx, crop.y0 + ny)) {
+                            needed = true;
+                            break;
+                        }
+                if (needed) noise[at(x, y)] = pixelNoise(film, crop.x0 + x, crop.y0 + y);
+            }
     });
+    // Each row only writes its own pixels' flags and reads the noise
+    // computed above: the result does not depend on the partition.
+    return tbb::parallel_reduce(
+        tbb::blocked_range<int>(0, height), size_t{0},
+        [&](const tbb::blocked_range<int>& rows, size_t running) {
+            for (int y = rows.begin(); y != rows.end(); ++y)
+                for (int x = 0; x < width; ++x) {
+                    if (film.converged(crop.x0 + x, crop.y0 + y)) continue;
+                    float worst = 0.0f;
+                    for (int ny = std::max(y - 1, 0); ny <= std::min(y + 1, height - 1); ++ny)
+                        for (int nx = std::max(x - 1, 0); nx <= std::min(x + 1, width - 1); ++nx)
+                            worst = std::max(worst, noise[at(nx, ny)]);
+                    if (worst < adaptive.threshold)
+                        film.setConverged(crop.x0 + x, crop.y0 + y);
+                    else
+                        ++running;
+                }
+            return running;
+        },
+        [](size_t a, size_t b) { return a + b; });
 }
 
 }  // namespace strahl

@@ -135,7 +135,14 @@ RenderStats renderImage(const World& world, const Camera& camera, const Integrat
     // A world whose light set was never built would render without its lights.
     if (!world.lightsPrepared()) fail("renderImage: World::prepareLights() has not been called");
     const auto start = std::chrono::steady_clock::now();
-    const std::vector<PixelRect> tiles = cutTiles(film.crop(), options.tileSize);
+    // Adaptive sampling's later passes have work in a few places only: tiles
+    // of at most 8 x 8 pixels let both threads share it. (Any tile size gives
+    // the same image.)
+    constexpr int kAdaptiveTileSize = 8;
+    const std::vector<PixelRect> tiles =
+        cutTiles(film.crop(), options.adaptive.enabled()
+                                  ? std::min(options.tileSize, kAdaptiveTileSize)
+                                  : options.tileSize);
     if (options.sampleOffset < 0 || options.sampleOffset > INT32_MAX - options.spp)
         fail("sample offset ", options.sampleOffset, " with ", options.spp,
              " samples per pixel is out of range");
@@ -236,7 +243,8 @@ RenderStats renderImage(const World& world, const Camera& camera, const Integrat
         // checkpoint (passDone) records them. Tiles whose pixels all stopped
         // are not visited again.
         if (adaptive.enabled() && pass + 1 >= adaptive.minSamples && pass + 1 < options.spp) {
-            const size_t running = stopConvergedPixels(film, adaptive, options.threads);
+            const size_t running =
+                arena.execute([&] { return stopConvergedPixels(film, adaptive); });
             for (size_t i = 0; i < tiles.size(); ++i)
                 if (tileStart[i] <= pass)
                     tileStart[i] = tileStartSample(film, tiles[i], options.spp);

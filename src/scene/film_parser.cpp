@@ -97,10 +97,12 @@ RenderDesc parseRender(const JsonValue& v) {
     if (auto rr = v.find("russian_roulette")) r.russianRoulette = rr->boolean();
     if (auto hide = v.find("hide_emitters")) r.hideEmitters = hide->boolean();
     if (auto denoise = v.find("denoise")) r.denoise = denoise->boolean();
-    if (auto selection = v.find("light_selection"))
-        r.lightSelection = selection->oneOf({"power", "uniform"}) == "uniform"
-                               ? LightSelection::UniformEmitters
-                               : LightSelection::Power;
+    if (auto selection = v.find("light_selection")) {
+        const std::string name = selection->oneOf({"bvh", "power", "uniform"});
+        r.lightSelection = name == "bvh"       ? LightSelection::Bvh
+                           : name == "uniform" ? LightSelection::UniformEmitters
+                                               : LightSelection::Power;
+    }
     if (auto rr = v.find("russian_roulette_depth"))
         r.russianRouletteDepth = static_cast<int>(rr->integer(1, 1024));
     if (auto rr = v.find("russian_roulette_threshold")) {
@@ -126,8 +128,8 @@ RenderDesc parseRender(const JsonValue& v) {
             adaptive->fail("expected {\"threshold\": T, \"min_samples\": N}, got ",
                            adaptive->describe());
         adaptive->requireKeys({"threshold", "min_samples"});
-        // Noise is a standard error in display units: 1 would stop a pixel
-        // whose noise spans the whole display range.
+        // A relative error: at 1 a pixel's noise is as large as the pixel
+        // (with nonnegative samples, no estimate exceeds it).
         r.adaptiveThreshold = adaptive->get("threshold").numberIn(0.0f, 1.0f);
         if (auto minSamples = adaptive->find("min_samples"))
             r.adaptiveMinSamples = static_cast<int>(minSamples->integer(2, kMaxSpp));

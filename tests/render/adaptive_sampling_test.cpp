@@ -51,7 +51,7 @@ void addGrey(Film& film, int x, int y, float value) {
     film.addSample(x, y, Color(value), AovSample{});
 }
 
-TEST(AdaptiveSampling, NoiseIsTheStandardErrorInASquareRootEncoding) {
+TEST(AdaptiveSampling, NoiseIsTheRelativeStandardErrorAboveADarkFloor) {
     Film film(3, 1, PixelRect{0, 0, 3, 1}, {});
     film.trackConvergence();
     addGrey(film, 0, 0, 1.0f);  // one sample: no variance yet
@@ -60,7 +60,7 @@ TEST(AdaptiveSampling, NoiseIsTheStandardErrorInASquareRootEncoding) {
     addGrey(film, 2, 0, 0.0f);
     addGrey(film, 2, 0, 0.0f);  // black: nothing to refine
     EXPECT_EQ(pixelNoise(film, 0, 0), kInfinity);
-    EXPECT_NEAR(pixelNoise(film, 1, 0), 1.0 / (2.0 * std::sqrt(2.0)), 1e-6);
+    EXPECT_NEAR(pixelNoise(film, 1, 0), 1.0 / std::sqrt(4.0 + 0.01), 1e-6);
     EXPECT_EQ(pixelNoise(film, 2, 0), 0.0f);
 }
 
@@ -74,14 +74,14 @@ TEST(AdaptiveSampling, APixelStopsOnlyWhenItsWholeNeighbourhoodIsQuiet) {
             addGrey(film, x, y, noisy ? 0.0f : 0.5f);
             addGrey(film, x, y, noisy ? 2.0f : 0.5f);
         }
-    EXPECT_EQ(stopConvergedPixels(film, adaptive(0.1f, 2), 2), 9u + 4u);
+    EXPECT_EQ(stopConvergedPixels(film, adaptive(0.1f, 2)), 9u + 4u);
     EXPECT_FALSE(film.converged(2, 1));  // a neighbour of (3, 2)
     EXPECT_FALSE(film.converged(4, 3));
     EXPECT_TRUE(film.converged(5, 2));  // two pixels away
     EXPECT_FALSE(film.converged(1, 1));  // the corner's neighbourhood, clipped to the film
     EXPECT_TRUE(film.converged(2, 0));
     // A stopped pixel stays stopped; running ones are judged again.
-    EXPECT_EQ(stopConvergedPixels(film, adaptive(10.0f, 2), 2), 0u);
+    EXPECT_EQ(stopConvergedPixels(film, adaptive(10.0f, 2)), 0u);
     EXPECT_TRUE(film.converged(3, 2));
 }
 

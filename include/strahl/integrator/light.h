@@ -26,6 +26,7 @@
 #include "strahl/core/distribution.h"
 #include "strahl/integrator/directional_light.h"
 #include "strahl/integrator/environment_light.h"
+#include "strahl/integrator/light_bvh.h"
 #include "strahl/integrator/light_sample.h"
 #include "strahl/integrator/point_light.h"
 #include "strahl/integrator/projector_light.h"
@@ -76,10 +77,13 @@ Color triangleLe(const Light& light, const Vec3& w);
 float lightPower(const Light& light, const Bounds3& sceneBounds);
 
 // How next-event estimation picks a light (docs/lights.md, "Choosing a light"):
-// in proportion to its power, or each emitter (a light of the scene, the sky,
-// an emitting shape as a whole) equally often and, within an emitting shape,
-// its triangles in proportion to their power (Mitsuba's choice).
-enum class LightSelection { Power, UniformEmitters };
+// by its estimated contribution at the shading point through a light BVH
+// (light_bvh.h; the infinite lights, which it does not hold, each as often as
+// the whole tree), in proportion to its power, or each emitter (a light of
+// the scene, the sky, an emitting shape as a whole) equally often and, within
+// an emitting shape, its triangles in proportion to their power (Mitsuba's
+// choice).
+enum class LightSelection { Bvh, Power, UniformEmitters };
 
 // The lights of a scene and the discrete distribution that picks one per
 // next-event estimate (uniform if every power is 0).
@@ -98,15 +102,21 @@ public:
 
     const std::vector<Light>& lights() const { return lights_; }
     bool empty() const { return lights_.empty(); }
-    // Index of the light picked by u in [0, 1) and its probability.
-    std::optional<std::pair<uint32_t, float>> choose(float u) const;
-    float pmf(uint32_t index) const;
+    // Index of the light picked by u in [0, 1) for a receiver at `at` (its
+    // point and normal; only the light BVH reads them) and its probability;
+    // none if no light can reach it. pmf gives the same probability.
+    std::optional<std::pair<uint32_t, float>> choose(float u,
+                                                     const LightSampleContext& at = {}) const;
+    float pmf(uint32_t index, const LightSampleContext& at = {}) const;
+    LightSelection selection() const { return selection_; }
     // Indices of the infinite lights (what an escaping ray sees).
     const std::vector<uint32_t>& infiniteLights() const { return infinite_; }
 
 private:
     std::vector<Light> lights_;
-    Distribution1D distribution_;  // over the lights' powers
+    LightSelection selection_ = LightSelection::Power;
+    Distribution1D distribution_;  // Power, UniformEmitters: over the lights' weights
+    LightBvh bvh_;                 // Bvh: the finite lights with power
     std::vector<uint32_t> infinite_;
 };
 

@@ -3,15 +3,17 @@
 // below a threshold stops, and the render's later passes go only to the
 // pixels that are still noisy (docs/adaptive.md).
 //
-// The noise of a pixel is the standard error of its mean radiance, measured
-// in a display-like encoding: with I the mean of the three channels and s the
-// standard error of I, a square-root encoding (about the sRGB curve) turns s
-// into s / (2 sqrt(I)) (first order: d sqrt(I) = dI / (2 sqrt(I))), so dark
-// pixels are not held to an absolute error they could never show, and bright
-// ones not to a relative error nobody sees. s comes from the film's running
-// variance (Welford), bounded above by the mean of the channels' standard
-// errors (Cauchy-Schwarz: sd(sum) <= sum of sd), as the channels' covariance
-// is not kept.
+// The noise of a pixel is the relative standard error of its mean radiance:
+// with I the mean of the three channels of the pixel's mean and s the
+// standard error of I,
+//     e = s / sqrt(I^2 + 0.1^2),
+// which is s / I for I well above 0.1 and 10 s for darker pixels, so a dark
+// pixel is not held to a relative error it could never show. Squared and
+// averaged over the image, e^2 is the relative MSE pbrt's and Mitsuba's
+// papers measure renders by (with the same epsilon 0.01). s comes from the
+// film's running variance (Welford), bounded above by the mean of the
+// channels' standard errors (Cauchy-Schwarz: sd(sum) <= sum of sd), as the
+// channels' covariance is not kept.
 //
 // A pixel stops when the noise of every pixel of its 3 x 3 neighbourhood
 // (clipped to the rendered rectangle) is below the threshold: a pixel whose
@@ -26,8 +28,11 @@
 
 namespace strahl {
 
+// The level below which a pixel's error counts as absolute (see above).
+inline constexpr float kDarkFloor = 0.1f;
+
 struct AdaptiveSampling {
-    // Off at 0. Cycles' noise threshold is comparable; 0.01 is a good start.
+    // Off at 0. The relative error a pixel may keep: 0.02 is a good start.
     float threshold = 0.0f;
     // Samples every pixel takes before any may stop: too few and the variance
     // estimate itself is noise (at 16 its relative error is about 37 %: sqrt(2 / (n - 1))).
@@ -36,12 +41,12 @@ struct AdaptiveSampling {
 };
 
 // The noise of pixel (x, y) of `film` as defined above; +inf below 2 samples,
-// 0 for a pixel all of whose samples were black.
+// 0 for a pixel all of whose samples were the same.
 float pixelNoise(const Film& film, int x, int y);
 
 // Stops (Film::setConverged) every running pixel of `film` whose
 // neighbourhood is below the threshold. Returns the pixels still running.
-// `threads` as RenderOptions::threads (0: all).
-size_t stopConvergedPixels(Film& film, const AdaptiveSampling& adaptive, int threads);
+// Runs in the caller's task arena (its thread count).
+size_t stopConvergedPixels(Film& film, const AdaptiveSampling& adaptive);
 
 }  // namespace strahl

@@ -1,0 +1,57 @@
+#pragma once
+// Bounds on where a group of lights is, which way it emits and how much: the
+// node data of the light BVH (light_bvh.h), after Conty Estevez and Kulla,
+// "Importance Sampling of Many Lights with Adaptive Tree Splitting" (2018),
+// the scheme pbrt-v4 and Cycles use. docs/lights.md derives it.
+//
+// The emission is bounded by an orientation cone: every emitting surface's
+// normal lies within angle thetaO of `axis`, and light leaves a surface at
+// most thetaE away from its normal (pi/2 for a surface, the cone's width for
+// a spot). So no light leaves the group at more than thetaO + thetaE from the
+// axis. A two-sided group emits along -axis as well.
+
+#include <optional>
+
+#include "strahl/core/bounds.h"
+#include "strahl/core/math.h"
+
+namespace strahl {
+
+struct Light;
+
+struct LightBounds {
+    Bounds3 box;            // where the emitters are
+    Vec3 axis{0.0f, 0.0f, 1.0f};  // unit
+    float thetaO = kPi;     // normal spread around the axis, radians in [0, pi]
+    float thetaE = 0.5f * kPi;  // emission spread around each normal, radians in [0, pi]
+    float power = 0.0f;     // W (lightPower), > 0 for a light in the BVH
+    bool twoSided = false;
+
+    // An upper bound, up to the constant factors all nodes share, on the
+    // light this group can send to a receiver at p with unit normal n (n = 0:
+    // no surface, every direction counts): power x cos(the smallest angle
+    // between the emission cone and the direction to p) x cos(the smallest
+    // angle between n's line and the group) / distance^2; 0 if p lies outside
+    // every direction the group emits into. The angles widen by the angle the
+    // box subtends from p, so the bound holds for every point of the box.
+    float importance(const Vec3& p, const Vec3& n) const;
+};
+
+// The bounds of both groups: the box and power add up, the cones merge into
+// the smallest cone holding both (Conty Estevez and Kulla, algorithm 1).
+LightBounds unite(const LightBounds& a, const LightBounds& b);
+
+// The orientation part of the surface area orientation heuristic (the same
+// paper, eq. 1): the solid-angle measure of the directions the cone emits
+// into, weighted by the cosine to the nearest normal,
+//   M = 2 pi (1 - cos thetaO)
+//       + pi/2 (2 thetaW sin thetaO - cos(thetaO - 2 thetaW) - 2 thetaO sin thetaO + cos thetaO)
+// with thetaW = min(thetaO + thetaE, pi).
+float orientationMeasure(const LightBounds& b);
+
+// The bounds of one light of a light set, or none for an infinite light
+// (which the light BVH does not hold) and for one that emits nothing.
+// `power` is its lightPower.
+std::optional<LightBounds> boundsOf(const Light& light, float power);
+
+}  // namespace strahl
