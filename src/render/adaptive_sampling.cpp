@@ -24,6 +24,7 @@ float pixelNoise(const Film& film, int x, int y) {
 }
 
 size_t stopConvergedPixels(Film& film, const AdaptiveSampling& adaptive) {
+    constexpr int kR = kNeighbourhoodRadius;
     if (!film.tracksConvergence()) fail("adaptive sampling: the film does not track convergence");
     const PixelRect crop = film.crop();
     const int width = crop.width(), height = crop.height();
@@ -35,8 +36,9 @@ size_t stopConvergedPixels(Film& film, const AdaptiveSampling& adaptive) {
         for (int y = rows.begin(); y != rows.end(); ++y)
             for (int x = 0; x < width; ++x) {
                 bool needed = false;
-                for (int ny = std::max(y - 1, 0); ny <= std::min(y + 1, height - 1) && !needed; ++ny)
-                    for (int nx = std::max(x - 1, 0); nx <= std::min(x + 1, width - 1); ++nx)
+                for (int ny = std::max(y - kR, 0); ny <= std::min(y + kR, height - 1) && !needed;
+                     ++ny)
+                    for (int nx = std::max(x - kR, 0); nx <= std::min(x + kR, width - 1); ++nx)
                         if (!film.converged(crop.x0 + nx, crop.y0 + ny)) {
                             needed = true;
                             break;
@@ -53,8 +55,8 @@ size_t stopConvergedPixels(Film& film, const AdaptiveSampling& adaptive) {
                 for (int x = 0; x < width; ++x) {
                     if (film.converged(crop.x0 + x, crop.y0 + y)) continue;
                     float worst = 0.0f;
-                    for (int ny = std::max(y - 1, 0); ny <= std::min(y + 1, height - 1); ++ny)
-                        for (int nx = std::max(x - 1, 0); nx <= std::min(x + 1, width - 1); ++nx)
+                    for (int ny = std::max(y - kR, 0); ny <= std::min(y + kR, height - 1); ++ny)
+                        for (int nx = std::max(x - kR, 0); nx <= std::min(x + kR, width - 1); ++nx)
                             worst = std::max(worst, noise[at(nx, ny)]);
                     if (worst < adaptive.threshold)
                         film.setConverged(crop.x0 + x, crop.y0 + y);

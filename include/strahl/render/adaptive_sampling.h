@@ -28,6 +28,9 @@
 
 namespace strahl {
 
+// The neighbourhood a decision looks at: (2 r + 1)^2 pixels.
+inline constexpr int kNeighbourhoodRadius = 2;
+
 // The level below which a pixel's error counts as absolute (see above).
 inline constexpr float kDarkFloor = 0.1f;
 
