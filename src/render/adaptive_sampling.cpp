@@ -12,6 +12,12 @@
 
 namespace strahl {
 
+bool isDecisionPass(int samples, int minSamples) {
+    for (int n = minSamples; n <= samples; n += std::max(1, n / 8))
+        if (n == samples) return true;
+    return false;
+}
+
 float pixelNoise(const Film& film, int x, int y) {
     const Film::Estimate e = film.estimate(x, y);
     if (e.samples < 2) return kInfinity;

@@ -242,7 +242,8 @@ RenderStats renderImage(const World& world, const Camera& camera, const Integrat
         // The decisions of this pass boundary, from the film alone, before a
         // checkpoint (passDone) records them. Tiles whose pixels all stopped
         // are not visited again.
-        if (adaptive.enabled() && pass + 1 >= adaptive.minSamples && pass + 1 < options.spp) {
+        if (adaptive.enabled() && isDecisionPass(pass + 1, adaptive.minSamples) &&
+            pass + 1 < options.spp) {
             const size_t running =
                 arena.execute([&] { return stopConvergedPixels(film, adaptive); });
             for (size_t i = 0; i < tiles.size(); ++i)

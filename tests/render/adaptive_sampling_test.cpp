@@ -86,6 +86,15 @@ TEST(AdaptiveSampling, APixelStopsOnlyWhenItsWholeNeighbourhoodIsQuiet) {
     EXPECT_TRUE(film.converged(5, 4));
 }
 
+TEST(AdaptiveSampling, DecisionsComeAboutEightTimesPerDoubling) {
+    std::vector<int> passes;
+    for (int n = 1; n <= 40; ++n)
+        if (isDecisionPass(n, 16)) passes.push_back(n);
+    EXPECT_EQ(passes, (std::vector<int>{16, 18, 20, 22, 24, 27, 30, 33, 37}));
+    EXPECT_TRUE(isDecisionPass(2, 2));
+    EXPECT_TRUE(isDecisionPass(3, 2));  // below 8 samples, every pass
+}
+
 TEST(AdaptiveSampling, TheFlagsArePartOfTheFilmState) {
     Film film(4, 3, PixelRect{0, 0, 4, 3}, {});
     film.trackConvergence();

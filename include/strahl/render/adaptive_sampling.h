@@ -15,7 +15,7 @@
 // channels' standard errors (Cauchy-Schwarz: sd(sum) <= sum of sd), as the
 // channels' covariance is not kept.
 //
-// A pixel stops when the noise of every pixel of its 3 x 3 neighbourhood
+// A pixel stops when the noise of every pixel of its 5 x 5 neighbourhood
 // (clipped to the rendered rectangle) is below the threshold: a pixel whose
 // few samples happened to agree is not fooled if its neighbours are still
 // noisy. Decisions are taken only between sample passes, from the film alone,
@@ -42,6 +42,13 @@ struct AdaptiveSampling {
     int minSamples = 16;
     bool enabled() const { return threshold > 0.0f; }
 };
+
+// Whether pixels are judged after `samples` passes: after minSamples, then
+// after every eighth more (16, 18, 20, 22, 24, 27, 30, 33, 37, ...): about
+// eight decisions per doubling, so their cost stays small beside the passes',
+// and a pixel takes at most 1/8 more samples than it needed. It depends on
+// the pass count alone, so a resumed render decides where the whole one did.
+bool isDecisionPass(int samples, int minSamples);
 
 // The noise of pixel (x, y) of `film` as defined above; +inf below 2 samples,
 // 0 for a pixel all of whose samples were the same.
