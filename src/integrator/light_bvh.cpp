@@ -132,7 +132,9 @@ float LightBvh::childProbability(const Node& node, int which, const Vec3& p, con
 
 std::optional<std::pair<uint32_t, float>> LightBvh::choose(float u, const Vec3& p,
                                                            const Vec3& n) const {
-    if (nodes_.empty() || !(nodes_[0].bounds.importance(p, n) > 0.0f)) return std::nullopt;
+    // A light alone is taken without asking whether it reaches p: if it does
+    // not, it brings nothing, and the one-light scene pays nothing for the tree.
+    if (nodes_.empty()) return std::nullopt;
     float pmf = 1.0f;
     uint32_t at = 0;
     while (!nodes_[at].leaf) {
@@ -158,7 +160,6 @@ std::optional<std::pair<uint32_t, float>> LightBvh::choose(float u, const Vec3& 
 
 float LightBvh::pmf(uint32_t light, const Vec3& p, const Vec3& n) const {
     if (light >= leafOf_.size() || leafOf_[light] == UINT32_MAX) return 0.0f;
-    if (!(nodes_[0].bounds.importance(p, n) > 0.0f)) return 0.0f;
     // The path up to the root, then the same products as choose, in its
     // order (float products depend on it). Trees are rarely deeper than 64;
     // a deeper one takes the heap.

@@ -199,21 +199,35 @@ RenderStats renderImage(const World& world, const Camera& camera, const Integrat
     // each pass the image is a complete (s + 1)-sample image. Every pixel still
     // accumulates its samples in index order, whatever the passes, threads or
     // tile order: the sums, hence the image, are bit-identical.
+    std::vector<size_t> passTiles;  // the tiles that take this pass
+    passTiles.reserve(tiles.size());
     for (int pass = firstPass; pass < options.spp; ++pass) {
         if (cancelled()) break;
+        // Only those: late in an adaptive render most tiles have stopped, and
+        // a task per tile per pass would cost more than the work.
+        passTiles.clear();
+        for (size_t i = 0; i < tiles.size(); ++i)
+            if (tileStart[i] <= pass) passTiles.push_back(i);
         arena.execute([&] {
             // Grain 1: tiles are the unit of load balancing; they vary a lot in cost.
             tbb::parallel_for(
-                tbb::blocked_range<size_t>(0, tiles.size(), 1),
+                tbb::blocked_range<size_t>(0, passTiles.size(), 1),
                 [&](const tbb::blocked_range<size_t>& range) {
-                    for (size_t i = range.begin(); i != range.end(); ++i) {
+                    for (size_t k = range.begin(); k != range.end(); ++k) {
+                        const size_t i = passTiles[k];
                         // Tiles in flight finish; the rest of the pass is skipped.
-                        if (tileStart[i] > pass || cancelled()) continue;
+                        if (cancelled()) continue;
                         TileContext ctx{
                             world, integrator, film, !film.aovs().empty(), adaptive.enabled(),
                             {},    0};
                         const int sample = options.sampleOffset + pass;  // the sampler's index
-                        switch (result.packetWidth) {
+                        // Once adaptive sampling stops pixels, the running
+                        // ones are scattered: a packet would carry a lane or
+                        // two at the cost of a full one. Camera rays then go
+                        // one by one (a rule of the pass alone, so the image
+                        // is the same for any tiles and threads).
+                        const bool sparse = adaptive.enabled() && pass >= adaptive.minSamples;
+                        switch (sparse ? 1 : result.packetWidth) {
                             case 16:
                                 renderTilePackets<16>(ctx, generator, tiles[i], pass, sample);
                                 break;
