@@ -388,7 +388,7 @@ int main(int argc, char** argv) try {
                 for (const Point& p : sceneCurves.front().points)
                     if (std::find(o.thresholdSpp.begin(), o.thresholdSpp.end(),
                                   int(p.samples)) != o.thresholdSpp.end())
-                        thresholds.push_back(float(p.error));
+                        if (p.error <= 1.0) thresholds.push_back(float(p.error));  // the CLI's range
                 for (float t : thresholds) {
                     char name[16];
                     std::snprintf(name, sizeof name, "t %.3g", double(t));

@@ -49,6 +49,11 @@ LightSet::LightSet(std::vector<Light> lights, const Bounds3& sceneBounds)
 LightSet::LightSet(std::vector<Light> lights, const Bounds3& sceneBounds, LightSelection selection,
                    const std::vector<uint32_t>& emitterOf)
     : lights_(std::move(lights)), selection_(selection) {
+    if (selection_ == LightSelection::Auto) {
+        const auto finite = std::count_if(lights_.begin(), lights_.end(),
+                                          [](const Light& l) { return !l.isInfinite(); });
+        selection_ = size_t(finite) > kAutoBvhLights ? LightSelection::Bvh : LightSelection::Power;
+    }
     if (lights_.empty()) return;
     if (lights_.size() > UINT32_MAX) fail("too many lights: ", lights_.size());
     std::vector<float> powers(lights_.size());
@@ -59,7 +64,7 @@ LightSet::LightSet(std::vector<Light> lights, const Bounds3& sceneBounds, LightS
             fail("light ", i, ": power ", powers[i], " is not finite and >= 0");
         if (lights_[i].isInfinite()) infinite_.push_back(static_cast<uint32_t>(i));
     }
-    if (selection == LightSelection::Bvh) {
+    if (selection_ == LightSelection::Bvh) {
         std::vector<LightBounds> bounds;
         std::vector<uint32_t> index;
         for (size_t i = 0; i < lights_.size(); ++i)
@@ -70,7 +75,7 @@ LightSet::LightSet(std::vector<Light> lights, const Bounds3& sceneBounds, LightS
         bvh_ = LightBvh(std::move(bounds), std::move(index));
         return;
     }
-    if (selection == LightSelection::UniformEmitters) {
+    if (selection_ == LightSelection::UniformEmitters) {
         if (emitterOf.size() != lights_.size())
             fail("light selection: ", emitterOf.size(), " emitter ids for ", lights_.size(), " lights");
         // Each emitter 1 / emitters; within one, its lights by power (evenly if

@@ -98,8 +98,9 @@ RenderDesc parseRender(const JsonValue& v) {
     if (auto hide = v.find("hide_emitters")) r.hideEmitters = hide->boolean();
     if (auto denoise = v.find("denoise")) r.denoise = denoise->boolean();
     if (auto selection = v.find("light_selection")) {
-        const std::string name = selection->oneOf({"bvh", "power", "uniform"});
-        r.lightSelection = name == "bvh"       ? LightSelection::Bvh
+        const std::string name = selection->oneOf({"auto", "bvh", "power", "uniform"});
+        r.lightSelection = name == "auto"      ? LightSelection::Auto
+                           : name == "bvh"     ? LightSelection::Bvh
                            : name == "uniform" ? LightSelection::UniformEmitters
                                                : LightSelection::Power;
     }

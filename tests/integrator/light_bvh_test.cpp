@@ -69,6 +69,22 @@ TEST(LightBvh, TwoPointLightsOverAReceiverGoByTheInverseSquareLaw) {
     EXPECT_EQ(set.choose(0.91f, receiver)->first, 1u);
 }
 
+TEST(LightBvh, AutoSelectionTakesTheTreeAboveSixteenFiniteLights) {
+    std::vector<Light> lights;
+    SkyLight sky;
+    lights.push_back(sky);  // infinite lights do not count
+    for (size_t i = 0; i < kAutoBvhLights; ++i) lights.push_back(point(Vec3(float(i), 1, 0), 1.0f));
+    std::vector<uint32_t> emitters(lights.size() + 1);
+    for (size_t i = 0; i < emitters.size(); ++i) emitters[i] = uint32_t(i);
+    emitters.pop_back();
+    EXPECT_EQ(LightSet(lights, box(), LightSelection::Auto, emitters).selection(),
+              LightSelection::Power);
+    lights.push_back(point(Vec3(0, 2, 0), 1.0f));
+    emitters.push_back(uint32_t(emitters.size()));
+    EXPECT_EQ(LightSet(lights, box(), LightSelection::Auto, emitters).selection(),
+              LightSelection::Bvh);
+}
+
 TEST(LightBvh, TheDistributionSumsToOneAndChooseFollowsIt) {
     Pcg32 rng(7, 1);
     std::vector<Light> lights;
