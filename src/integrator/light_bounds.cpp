@@ -10,7 +10,9 @@ namespace strahl {
 
 namespace {
 
-float safeAcos(float c) { return std::acos(std::clamp(c, -1.0f, 1.0f)); }
+float safeAcos(float c) {
+    return std::acos(std::clamp(c, -1.0f, 1.0f));
+}
 
 // The angle between two unit vectors, accurate also near 0 and pi (acos of
 // the dot product loses half the digits there).
@@ -99,8 +101,8 @@ float orientationMeasure(const LightBounds& b) {
     const float sinO = std::sin(b.thetaO), cosO = std::cos(b.thetaO);
     return 2.0f * kPi * (1.0f - cosO) +
            0.5f * kPi *
-               (2.0f * thetaW * sinO - std::cos(b.thetaO - 2.0f * thetaW) -
-                2.0f * b.thetaO * sinO + cosO);
+               (2.0f * thetaW * sinO - std::cos(b.thetaO - 2.0f * thetaW) - 2.0f * b.thetaO * sinO +
+                cosO);
 }
 
 std::optional<LightBounds> boundsOf(const Light& light, float power) {

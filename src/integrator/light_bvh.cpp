@@ -75,8 +75,8 @@ uint32_t LightBvh::build(std::vector<LightBounds>& lights, std::vector<uint32_t>
         float bestCost = kInfinity;
         int bestAxis = -1, bestBorder = 0;
         const Vec3 extent = centroids.diagonal();
-        const float longest = std::max({all.box.diagonal().x, all.box.diagonal().y,
-                                        all.box.diagonal().z});
+        const float longest =
+            std::max({all.box.diagonal().x, all.box.diagonal().y, all.box.diagonal().z});
         const auto binOf = [&](const LightBounds& b, int axis) {
             const float f = (b.box.center()[axis] - centroids.min[axis]) / extent[axis];
             return std::clamp(static_cast<int>(f * kBins), 0, kBins - 1);

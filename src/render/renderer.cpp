@@ -139,10 +139,9 @@ RenderStats renderImage(const World& world, const Camera& camera, const Integrat
     // of at most 8 x 8 pixels let both threads share it. (Any tile size gives
     // the same image.)
     constexpr int kAdaptiveTileSize = 8;
-    const std::vector<PixelRect> tiles =
-        cutTiles(film.crop(), options.adaptive.enabled()
-                                  ? std::min(options.tileSize, kAdaptiveTileSize)
-                                  : options.tileSize);
+    const std::vector<PixelRect> tiles = cutTiles(
+        film.crop(), options.adaptive.enabled() ? std::min(options.tileSize, kAdaptiveTileSize)
+                                                : options.tileSize);
     if (options.sampleOffset < 0 || options.sampleOffset > INT32_MAX - options.spp)
         fail("sample offset ", options.sampleOffset, " with ", options.spp,
              " samples per pixel is out of range");

@@ -20,11 +20,11 @@ namespace strahl {
 struct Light;
 
 struct LightBounds {
-    Bounds3 box;            // where the emitters are
+    Bounds3 box;                  // where the emitters are
     Vec3 axis{0.0f, 0.0f, 1.0f};  // unit
-    float thetaO = kPi;     // normal spread around the axis, radians in [0, pi]
-    float thetaE = 0.5f * kPi;  // emission spread around each normal, radians in [0, pi]
-    float power = 0.0f;     // W (lightPower), > 0 for a light in the BVH
+    float thetaO = kPi;           // normal spread around the axis, radians in [0, pi]
+    float thetaE = 0.5f * kPi;    // emission spread around each normal, radians in [0, pi]
+    float power = 0.0f;           // W (lightPower), > 0 for a light in the BVH
     bool twoSided = false;
 
     // An estimate of the light this group can send to a receiver at p with

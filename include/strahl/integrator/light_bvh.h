@@ -58,8 +58,8 @@ private:
     // if neither child can reach p.
     float childProbability(const Node& node, int which, const Vec3& p, const Vec3& n) const;
 
-    std::vector<Node> nodes_;           // nodes_[0] is the root
-    std::vector<uint32_t> leafOf_;      // light-set index -> leaf node (UINT32_MAX: not held)
+    std::vector<Node> nodes_;       // nodes_[0] is the root
+    std::vector<uint32_t> leafOf_;  // light-set index -> leaf node (UINT32_MAX: not held)
 };
 
 }  // namespace strahl
