@@ -35,7 +35,7 @@ inline constexpr int kNeighbourhoodRadius = 2;
 inline constexpr float kDarkFloor = 0.1f;
 
 struct AdaptiveSampling {
-    // Off at 0. The relative error a pixel may keep: 0.02 is a good start.
+    // Off at 0. The relative error a pixel may keep: 0.05 is a good start.
     float threshold = 0.0f;
     // Samples every pixel takes before any may stop: too few and the variance
     // estimate itself is noise (at 16 its relative error is about 37 %: sqrt(2 / (n - 1))).
