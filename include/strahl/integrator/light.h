@@ -83,10 +83,12 @@ float lightPower(const Light& light, const Bounds3& sceneBounds);
 // the scene, the sky, an emitting shape as a whole) equally often and, within
 // an emitting shape, its triangles in proportion to their power (Mitsuba's
 // choice).
-// Auto (the default) is the BVH for scenes with more than kAutoBvhLights
-// finite lights, else power: with a few lights the tree's cost per choice
-// (two importances per level) outweighs what it saves (bench_convergence:
-// the Cornell box's two emissive triangles take 0.84x the time with it).
+// Auto is the BVH for scenes with more than kAutoBvhLights finite lights,
+// else power: with a few lights the tree's cost per choice (two importances
+// per level) outweighs what it saves (bench_convergence: the Cornell box's
+// two emissive triangles take 1.2x the time with it). Power is the default:
+// even on the 1600-lamp room the tree's cost per choice still outweighs its
+// lower variance at moderate errors (bench/RESULTS.md).
 enum class LightSelection { Auto, Bvh, Power, UniformEmitters };
 inline constexpr size_t kAutoBvhLights = 16;
 

@@ -84,7 +84,7 @@ struct World {
     std::vector<Material> materials;
     std::vector<Light> lights;  // explicit lights: point, spot, projector, directional, environment
     Color background{0.0f};     // radiance of escaping rays: a constant sky light
-    LightSelection lightSelection = LightSelection::Auto;  // read by prepareLights()
+    LightSelection lightSelection = LightSelection::Power;  // read by prepareLights()
     std::unique_ptr<Accel> accel;
     std::unique_ptr<TextureSystem> textures;  // null when no material uses a texture
     // Every light the integrators sample: `lights`, the sky of `background`
