@@ -69,4 +69,25 @@ RenderTimes renderWithCli(const fs::path& scene, const fs::path& out,
     return {j["timings"]["render"].get<double>(), j["timings"]["denoise"].get<double>()};
 }
 
+void writeOpenSphereScene(const std::filesystem::path& file) {
+    std::ofstream out(file);
+    out << R"({
+  "camera": { "eye": [0, 1.6, 4.5], "look_at": [0, 0.9, 0], "up": [0, 1, 0], "fov": 40 },
+  "film": { "width": 512, "height": 512 },
+  "render": { "integrator": "path", "spp": 16, "max_depth": 8 },
+  "materials": [ { "name": "grey", "color": 0.8 } ],
+  "shapes": [
+    { "type": "implicit", "surface": { "type": "sphere", "radius": 1 },
+      "transform": [ { "translate": [0, 1, 0] } ], "material": "grey" },
+    { "type": "mesh", "material": "grey",
+      "positions": [[-10, 0, -10], [10, 0, -10], [10, 0, 10], [-10, 0, 10]],
+      "indices": [0, 3, 2, 0, 2, 1] }
+  ],
+  "lights": [ { "type": "point", "position": [3, 5, 4], "intensity": 40 } ]
+}
+)";
+    if (!out) fail(file.string(), ": cannot write");
+}
+
+
 }  // namespace strahl::bench

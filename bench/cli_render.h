@@ -28,4 +28,11 @@ struct RenderTimes {
 RenderTimes renderWithCli(const std::filesystem::path& scene, const std::filesystem::path& out,
                           const std::vector<std::string>& args);
 
+// Writes the sphere scene of issue 20 (a grey sphere on a ground plane, one
+// point light, black sky) with an implicit sphere in place of the 2 million
+// triangles: bench_roulette's open scene, and bench_convergence's stand-in
+// when bench/peer_embree_tutorials.sh has not cached the OBJ. Throws
+// strahl::Error if the file cannot be written.
+void writeOpenSphereScene(const std::filesystem::path& file);
+
 }  // namespace strahl::bench

@@ -130,29 +130,6 @@ void writeLampRoom(const fs::path& file) {
     if (!out) fail(file.string(), ": cannot write");
 }
 
-// The implicit stand-in for the 2M-triangle sphere (the same scene as
-// bench_roulette's open scene: roulette and convergence do not care how the
-// sphere is made).
-void writeImplicitSphereScene(const fs::path& file) {
-    std::ofstream out(file);
-    out << R"({
-  "camera": { "eye": [0, 1.6, 4.5], "look_at": [0, 0.9, 0], "up": [0, 1, 0], "fov": 40 },
-  "film": { "width": 512, "height": 512 },
-  "render": { "integrator": "path", "spp": 16, "max_depth": 8 },
-  "materials": [ { "name": "grey", "color": 0.8 } ],
-  "shapes": [
-    { "type": "implicit", "surface": { "type": "sphere", "radius": 1 },
-      "transform": [ { "translate": [0, 1, 0] } ], "material": "grey" },
-    { "type": "mesh", "material": "grey",
-      "positions": [[-10, 0, -10], [10, 0, -10], [10, 0, 10], [-10, 0, 10]],
-      "indices": [0, 3, 2, 0, 2, 1] }
-  ],
-  "lights": [ { "type": "point", "position": [3, 5, 4], "intensity": 40 } ]
-}
-)";
-    if (!out) fail(file.string(), ": cannot write");
-}
-
 std::string fileHash(const fs::path& file) {
     std::ifstream in(file, std::ios::binary);
     if (!in) fail(file.string(), ": cannot read");
@@ -317,7 +294,7 @@ int main(int argc, char** argv) try {
     } else {
         std::printf("sphere: the 2M-triangle OBJ of bench/peer_embree_tutorials.sh is not cached "
                     "(run that script once); an implicit sphere stands in\n");
-        writeImplicitSphereScene(work / "sphere.json");
+        bench::writeOpenSphereScene(work / "sphere.json");
         scenes.push_back({"sphere", work / "sphere.json"});
     }
     scenes.push_back({"default", source / "scenes/default.json"});

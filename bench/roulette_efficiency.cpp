@@ -63,28 +63,6 @@ struct Setting {
     }
 };
 
-// The open scene: the sphere scene of issue 20 with an implicit sphere in
-// place of 2 million triangles (roulette does not care how the sphere is made).
-void writeOpenScene(const fs::path& file) {
-    std::ofstream out(file);
-    out << R"({
-  "camera": { "eye": [0, 1.6, 4.5], "look_at": [0, 0.9, 0], "up": [0, 1, 0], "fov": 40 },
-  "film": { "width": 512, "height": 512 },
-  "render": { "integrator": "path", "spp": 16, "max_depth": 8 },
-  "materials": [ { "name": "grey", "color": 0.8 } ],
-  "shapes": [
-    { "type": "implicit", "surface": { "type": "sphere", "radius": 1 },
-      "transform": [ { "translate": [0, 1, 0] } ], "material": "grey" },
-    { "type": "mesh", "material": "grey",
-      "positions": [[-10, 0, -10], [10, 0, -10], [10, 0, 10], [-10, 0, 10]],
-      "indices": [0, 3, 2, 0, 2, 1] }
-  ],
-  "lights": [ { "type": "point", "position": [3, 5, 4], "intensity": 40 } ]
-}
-)";
-    if (!out) fail(file.string(), ": cannot write");
-}
-
 double fastest(const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); }
 
 double median(std::vector<double> v) {
@@ -134,7 +112,7 @@ int main(int argc, char** argv) try {
     const fs::path source = STRAHL_SOURCE_DIR;
     const fs::path work = fs::temp_directory_path() / ("bench_roulette-" + std::to_string(getpid()));
     fs::create_directories(work);
-    writeOpenScene(work / "open.json");
+    bench::writeOpenSphereScene(work / "open.json");
     struct BenchScene {
         std::string name;
         fs::path file;
