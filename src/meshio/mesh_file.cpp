@@ -73,6 +73,8 @@ void warn(const std::string& message) {
         std::fprintf(stderr, "strahl: warning: %s\n", message.c_str());
 }
 
+void reportWarning(const std::string& message) { warn(message); }
+
 std::string toLower(std::string_view s) {
     std::string out(s);
     for (char& c : out) {

@@ -9,12 +9,14 @@ namespace strahl::scene_detail {
 
 extern const SceneFormat kJsonSceneFormat;     // json_scene_format.cpp: the default
 extern const SceneFormat kMitsubaSceneFormat;  // mitsuba_scene_format.cpp
+extern const SceneFormat kPbrtSceneFormat;     // pbrt_scene_format.cpp
 
 namespace {
 
 const SceneFormat* const kFormats[] = {
     &kJsonSceneFormat,
     &kMitsubaSceneFormat,
+    &kPbrtSceneFormat,
 };
 
 }  // namespace

@@ -76,6 +76,11 @@ LoadedMesh loadSerializedFromMemory(std::string_view data, const std::filesystem
 // installs a handler that drops them.
 using MeshWarningHandler = std::function<void(const std::string& message)>;
 void setMeshWarningHandler(MeshWarningHandler handler);
+namespace meshio {
+// Reports one such warning (also used by the scene importers for a note the
+// user should see: an integrator substituted, say).
+void reportWarning(const std::string& message);
+}  // namespace meshio
 
 // Dispatches on the extension (.obj, .ply, .gltf, .glb; case-insensitive).
 LoadedMesh loadMeshFile(const std::filesystem::path& file);

@@ -1,0 +1,1063 @@
+// A pbrt-v4 scene as a strahl scene document (pbrt_mapping.h); docs/pbrt.md
+// has the tables this code implements, directive by directive.
+
+#include "pbrt_mapping.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <glm/gtc/constants.hpp>
+
+#include "mitsuba_named_materials.h"
+#include "spectrum_to_rgb.h"
+#include "strahl/core/error.h"
+#include "strahl/meshio/mesh_file.h"
+
+namespace strahl::scene_detail::pbrt {
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+// x mirrored: pbrt's left-handed camera seen in strahl's right-handed world.
+const glm::dmat4 kMirrorX(glm::dvec4(-1, 0, 0, 0), glm::dvec4(0, 1, 0, 0), glm::dvec4(0, 0, 1, 0),
+                          glm::dvec4(0, 0, 0, 1));
+
+// Luminance of linear sRGB (Rec. 709 primaries, the Y row of RGB -> XYZ).
+double luminance(glm::dvec3 c) { return 0.2126729 * c.r + 0.7151522 * c.g + 0.0721750 * c.b; }
+
+json vec3(glm::dvec3 v) { return json::array({v.x, v.y, v.z}); }
+json color(glm::dvec3 c) {
+    if (c.r == c.g && c.g == c.b) return c.r;
+    return vec3(c);
+}
+
+// strahl's {"matrix": [16 numbers]} transform operation, row by row (the
+// last row of an affine map is 0 0 0 1).
+json matrixOp(const glm::dmat4& m) {
+    json rows = json::array();
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) rows.push_back(r == 3 ? (c == 3 ? 1.0 : 0.0) : m[c][r]);
+    return json::array({json{{"matrix", rows}}});
+}
+
+[[noreturn]] void unsupported(const Entity& e, const std::string& what) {
+    fail(e.place.text(), ": ", e.element(), ": ", what);
+}
+[[noreturn]] void bad(const Parameter& p, const std::string& what) {
+    fail(p.place.text(), ": \"", p.type, " ", p.name, "\": ", what);
+}
+
+// The parameters an entity's mapping reads are marked; any other given is an
+// error rather than a setting silently ignored.
+void refuseUnread(const Entity& e) {
+    for (const Parameter& p : e.params.items)
+        if (!p.used)
+            fail(p.place.text(), ": ", e.element(), ": parameter \"", p.type, " ", p.name,
+                 "\" is not supported (docs/pbrt.md lists those that are)");
+}
+
+const Parameter* param(const Entity& e, const std::string& name) {
+    const Parameter* p = e.params.find(name);
+    if (p) p->used = true;
+    return p;
+}
+
+const Parameter* typed(const Entity& e, const std::string& name, std::initializer_list<const char*> types) {
+    const Parameter* p = param(e, name);
+    if (!p) return nullptr;
+    for (const char* t : types)
+        if (p->type == t) return p;
+    std::string list;
+    for (const char* t : types) list += (list.empty() ? "" : ", ") + std::string(t);
+    bad(*p, "expected type " + list);
+}
+
+double number(const Entity& e, const std::string& name, double fallback) {
+    const Parameter* p = typed(e, name, {"float"});
+    if (!p) return fallback;
+    if (p->numbers.size() != 1) bad(*p, "expected one number");
+    return p->numbers[0];
+}
+int integer(const Entity& e, const std::string& name, int fallback) {
+    const Parameter* p = typed(e, name, {"integer"});
+    if (!p) return fallback;
+    if (p->numbers.size() != 1) bad(*p, "expected one integer");
+    if (std::abs(p->numbers[0]) > 2e9) bad(*p, "out of range");
+    return static_cast<int>(p->numbers[0]);
+}
+bool boolean(const Entity& e, const std::string& name, bool fallback) {
+    const Parameter* p = typed(e, name, {"bool"});
+    if (!p) return fallback;
+    if (p->numbers.size() != 1) bad(*p, "expected one value");
+    return p->numbers[0] != 0.0;
+}
+std::string text(const Entity& e, const std::string& name, const std::string& fallback) {
+    const Parameter* p = typed(e, name, {"string"});
+    if (!p) return fallback;
+    if (p->strings.size() != 1) bad(*p, "expected one string");
+    return p->strings[0];
+}
+glm::dvec3 point(const Entity& e, const std::string& name, glm::dvec3 fallback) {
+    const Parameter* p = typed(e, name, {"point3", "vector3", "normal"});
+    if (!p) return fallback;
+    if (p->numbers.size() != 3) bad(*p, "expected three numbers");
+    return {p->numbers[0], p->numbers[1], p->numbers[2]};
+}
+
+glm::dvec3 transformPoint(const glm::dmat4& m, glm::dvec3 p) { return glm::dvec3(m * glm::dvec4(p, 1.0)); }
+glm::dvec3 transformVector(const glm::dmat4& m, glm::dvec3 v) { return glm::dvec3(m * glm::dvec4(v, 0.0)); }
+
+// Wavelength/value pairs of a spectrum parameter: given inline or in a file
+// of pairs ("# comments", one or more pairs per line), wavelengths increasing.
+void spectrumPairs(const Parameter& p, const std::vector<double>& numbers, std::vector<double>& wl,
+                   std::vector<double>& v) {
+    if (numbers.size() < 4 || numbers.size() % 2 != 0) bad(p, "expected at least two wavelength-value pairs");
+    for (size_t i = 0; i < numbers.size(); i += 2) {
+        if (!wl.empty() && !(numbers[i] > wl.back())) bad(p, "the wavelengths must increase");
+        wl.push_back(numbers[i]);
+        v.push_back(numbers[i + 1]);
+    }
+}
+
+// The normalised spectrum of a blackbody at `kelvin`, as linear sRGB of
+// luminance 1 (pbrt-v4 lights divide any spectrum by its luminance).
+glm::dvec3 blackbody(const Parameter& p, double kelvin) {
+    if (!(kelvin > 0.0)) bad(p, "the temperature must be positive");
+    std::vector<double> wl, v;
+    // Planck's law, B(λ, T) = 2hc² / λ⁵ / (exp(hc / λkT) − 1); its scale drops out.
+    constexpr double c = 299792458.0, h = 6.62606957e-34, kb = 1.3806488e-23;
+    for (double nm = 360.0; nm <= 830.0; nm += 1.0) {
+        const double l = nm * 1e-9;
+        wl.push_back(nm);
+        v.push_back(2.0 * h * c * c / (std::pow(l, 5) * (std::exp(h * c / (l * kb * kelvin)) - 1.0)));
+    }
+    const glm::dvec3 rgb = glm::max(spectrumToLinearSrgb(wl, v, SpectrumUse::Emission), glm::dvec3(0.0));
+    return rgb / luminance(rgb);
+}
+
+struct NamedGlass {
+    std::string_view name;
+    double ior;  // at 550 nm, from the Sellmeier coefficients of the Schott catalogue
+};
+constexpr NamedGlass kGlasses[] = {
+    {"glass-BK7", 1.5185}, {"glass-BAF10", 1.6700}, {"glass-FK51A", 1.4870},
+    {"glass-LASF9", 1.8550}, {"glass-F5", 1.6054},  {"glass-F10", 1.6241}, {"glass-F11", 1.6241},
+};
+
+class Converter {
+public:
+    Converter(const Scene& scene, const fs::path& cwd) : s_(scene), cwd_(cwd) {}
+
+    json convert() {
+        film();
+        camera();
+        render();
+        json shapes = json::array();
+        for (const Shape& shape : s_.shapes) this->shape(shape, true, shapes);
+        for (const Instance& instance : s_.instances) {
+            json i = {{"type", "instance"}, {"group", group(instance.object)}};
+            i["transform"] = matrixOp(mirror_ * instance.toWorld);
+            i["name"] = "ObjectInstance@" + instance.place.text();
+            shapes.push_back(i);
+        }
+        if (shapes.empty()) fail(label(), ": the scene has no shapes");
+        for (const Light& light : s_.lights) this->light(light);
+        if (!materials_.empty()) doc_["materials"] = materials_;
+        if (!groups_.empty()) doc_["groups"] = groups_;
+        doc_["shapes"] = shapes;
+        if (!lights_.empty()) doc_["lights"] = lights_;
+        doc_["render"] = render_;
+        return doc_;
+    }
+
+private:
+    const Scene& s_;
+    fs::path cwd_;
+    json doc_ = json::object(), render_ = json::object();
+    json materials_ = json::array(), groups_ = json::array(), lights_ = json::array();
+    std::map<std::string, std::string> madeMaterials_;  // key -> strahl name
+    std::set<std::string> materialNames_;
+    std::map<std::string, std::string> madeGroups_;
+    int width_ = 1280, height_ = 720;
+    // What the world is mirrored by (pbrt_mapping.h): x, unless the camera
+    // transform mirrors already (a "Scale -1 1 1" before the LookAt, as
+    // exporters from right-handed programs write), when nothing.
+    glm::dmat4 mirror_{1.0};
+
+    std::string label() const { return s_.camera ? s_.camera->place.file : std::string("scene"); }
+
+    std::string file(const Parameter& p) const {
+        if (p.strings.size() != 1) bad(p, "expected one file name");
+        const fs::path name = p.strings[0];
+        const fs::path path = name.is_absolute() ? name : s_.folder / name;
+        if (!fs::exists(path)) bad(p, "no such file '" + p.strings[0] + "' (looked at " + path.string() + ")");
+        return path.string();
+    }
+
+    // --- film, camera, sampler, integrator ------------------------------
+    void film() {
+        json film = json::object();
+        std::string output = "pbrt.exr";
+        if (s_.film) {
+            const Entity& f = *s_.film;
+            if (f.type != "rgb" && f.type != "gbuffer")
+                unsupported(f, "only the \"rgb\" and \"gbuffer\" films are supported (strahl renders RGB)");
+            width_ = integer(f, "xresolution", 1280);
+            height_ = integer(f, "yresolution", 720);
+            if (width_ < 1 || height_ < 1) unsupported(f, "the resolution must be positive");
+            output = text(f, "filename", output);
+            if (const Parameter* crop = typed(f, "cropwindow", {"float"})) {
+                if (crop->numbers.size() != 4) bad(*crop, "expected x0 x1 y0 y1");
+                const std::vector<double>& c = crop->numbers;
+                for (double x : c)
+                    if (x < 0.0 || x > 1.0) bad(*crop, "the window must lie in [0, 1]");
+                // pbrt's pixel bounds: ceil(resolution · fraction) on both ends.
+                const int x0 = static_cast<int>(std::ceil(width_ * std::min(c[0], c[1])));
+                const int x1 = static_cast<int>(std::ceil(width_ * std::max(c[0], c[1])));
+                const int y0 = static_cast<int>(std::ceil(height_ * std::min(c[2], c[3])));
+                const int y1 = static_cast<int>(std::ceil(height_ * std::max(c[2], c[3])));
+                if (x1 <= x0 || y1 <= y0) bad(*crop, "the window holds no pixel");
+                film["crop"] = {x0, y0, x1, y1};
+            }
+            for (const char* ignored : {"diagonal", "savefp16"}) param(f, ignored);
+            if (const Parameter* clamp = typed(f, "maxcomponentvalue", {"float"}))
+                meshio::reportWarning(clamp->place.text() + ": \"float maxcomponentvalue\" (pbrt's sample clamp) " +
+                                      "is ignored: strahl renders the unclamped image");
+            if (const Parameter* iso = typed(f, "iso", {"float"}); iso && iso->numbers[0] != 100.0)
+                bad(*iso, "only ISO 100 (pbrt's default, the image as rendered) is supported");
+            if (const Parameter* e = typed(f, "exposuretime", {"float"}); e && e->numbers[0] != 1.0)
+                bad(*e, "only exposure time 1 is supported");
+            if (const Parameter* wb = typed(f, "whitebalance", {"float"}); wb && wb->numbers[0] != 0.0)
+                bad(*wb, "white balancing is not supported");
+            if (const Parameter* sensor = typed(f, "sensor", {"string"}); sensor && sensor->strings[0] != "cie1931")
+                bad(*sensor, "only the \"cie1931\" sensor is supported");
+            refuseUnread(f);
+        }
+        film["width"] = width_;
+        film["height"] = height_;
+        const fs::path out = fs::path(output).is_absolute() ? fs::path(output) : cwd_ / output;
+        film["outputs"] = {out.string()};
+        if (s_.filter) {
+            const Entity& f = *s_.filter;
+            // strahl's filters keep each pixel the mean of its own samples
+            // (filter importance sampling), as pbrt-v4 does.
+            if (f.type == "box") film["filter"] = "box";
+            else if (f.type == "gaussian") film["filter"] = "gaussian";
+            else if (f.type == "triangle") film["filter"] = "tent";
+            else unsupported(f, "this pixel filter is not supported (box, gaussian, triangle)");
+            const Parameter* xr = typed(f, "xradius", {"float"});
+            const Parameter* yr = typed(f, "yradius", {"float"});
+            if (xr || yr) {
+                const double x = xr ? xr->numbers[0] : -1.0, y = yr ? yr->numbers[0] : x;
+                if (xr && yr && x != y) unsupported(f, "different x and y radii are not supported");
+                film["filter"] = {{"type", film["filter"]}, {"radius", xr ? x : y}};
+            }
+            if (f.type == "gaussian" && typed(f, "sigma", {"float"}))
+                unsupported(f, "a sigma other than strahl's (radius / 3) is not supported");
+            refuseUnread(f);
+        } else {
+            // pbrt-v4's default filter: a Gaussian of radius 1.5 and sigma 0.5.
+            film["filter"] = "gaussian";
+        }
+        doc_["film"] = film;
+    }
+
+    void camera() {
+        json cam = json::object();
+        // The camera frame in pbrt's world, then mirrored (pbrt_mapping.h).
+        const glm::dmat4 worldFromCamera = glm::inverse(s_.cameraFromWorld);
+        const glm::dvec3 eye = transformPoint(worldFromCamera, glm::dvec3(0.0));
+        const glm::dvec3 dir = transformVector(worldFromCamera, glm::dvec3(0, 0, 1));
+        const glm::dvec3 up = transformVector(worldFromCamera, glm::dvec3(0, 1, 0));
+        mirror_ = glm::determinant(glm::dmat3(worldFromCamera)) > 0.0 ? kMirrorX : glm::dmat4(1.0);
+        cam["eye"] = vec3(transformPoint(mirror_, eye));
+        cam["back"] = vec3(-transformVector(mirror_, dir));
+        cam["up"] = vec3(transformVector(mirror_, up));
+        if (std::abs(glm::length(dir) - 1.0) > 1e-6 || std::abs(glm::length(up) - 1.0) > 1e-6 ||
+            std::abs(glm::dot(dir, up)) > 1e-6)
+            fail(s_.camera ? s_.camera->place.text() : label(),
+                 ": Camera: the camera transform scales or shears; only rotations, mirrors and translations are supported");
+        const double aspect = static_cast<double>(width_) / height_;
+        // pbrt's screen window: [-aspect, aspect] x [-1, 1] for a wide image,
+        // [-1, 1] x [-1/aspect, 1/aspect] for a tall one.
+        std::array<double, 4> window = aspect >= 1.0 ? std::array<double, 4>{-aspect, aspect, -1.0, 1.0}
+                                                     : std::array<double, 4>{-1.0, 1.0, -1.0 / aspect, 1.0 / aspect};
+        std::string type = "perspective";
+        double fov = 90.0, lensRadius = 0.0, focus = 1e6;
+        if (s_.camera) {
+            const Entity& c = *s_.camera;
+            type = c.type;
+            if (type != "perspective" && type != "orthographic")
+                unsupported(c, "only the perspective and orthographic cameras are supported");
+            if (const Parameter* w = typed(c, "screenwindow", {"float"})) {
+                if (w->numbers.size() != 4) bad(*w, "expected four numbers");
+                window = {w->numbers[0], w->numbers[1], w->numbers[2], w->numbers[3]};
+                if (!(window[0] < 0 && 0 < window[1] && window[2] < 0 && 0 < window[3]))
+                    bad(*w, "strahl needs a window around the axis (x0 < 0 < x1, y0 < 0 < y1)");
+            }
+            if (type == "perspective") fov = number(c, "fov", 90.0);
+            lensRadius = number(c, "lensradius", 0.0);
+            focus = number(c, "focaldistance", 1e6);
+            for (const char* ignored : {"shutteropen", "shutterclose", "frameaspectratio"}) param(c, ignored);
+            if (const Parameter* a = c.params.find("frameaspectratio"))
+                bad(*a, "a frame aspect ratio other than the image's is not supported");
+            refuseUnread(c);
+            if (!(fov > 0.0 && fov < 180.0)) unsupported(c, "fov must lie in (0, 180)");
+            if (lensRadius < 0.0 || !(focus > 0.0)) unsupported(c, "lensradius must be >= 0 and focaldistance > 0");
+        }
+        cam["type"] = type;
+        if (type == "perspective") {
+            // Rays leave pbrt's camera at its centre; strahl's start on the image
+            // plane at focal_distance d, so d is small against any scene: 10⁻⁴
+            // of the focus distance, at most 10⁻³ units.
+            const double d = std::min(1e-3, focus * 1e-4);
+            const double t = std::tan(glm::radians(fov) / 2.0) * d;
+            cam["focal_distance"] = d;
+            cam["window"] = {window[0] * t, window[1] * t, window[2] * t, window[3] * t};
+        } else {
+            cam["window"] = {window[0], window[1], window[2], window[3]};
+        }
+        if (lensRadius > 0.0) {
+            cam["aperture_radius"] = lensRadius;
+            cam["focus_distance"] = focus;
+        }
+        doc_["camera"] = cam;
+    }
+
+    void render() {
+        render_["integrator"] = "path";
+        render_["max_depth"] = 5;
+        render_["spp"] = 16;
+        if (s_.sampler) {
+            const Entity& smp = *s_.sampler;
+            // Every sampler estimates the same image; strahl uses its own.
+            const int spp = integer(smp, "pixelsamples", 16);
+            if (spp < 1 || spp > 65536) unsupported(smp, "pixelsamples must lie in 1 ... 65536");
+            render_["spp"] = spp;
+            for (const char* ignored : {"seed", "randomization", "jitter", "xsamples", "ysamples", "dimensions"})
+                param(smp, ignored);
+            refuseUnread(smp);
+        }
+        if (s_.integrator) {
+            const Entity& i = *s_.integrator;
+            static const std::set<std::string> pathLike = {"path", "volpath", "bdpt", "mlt", "sppm", "lightpath",
+                                                           "simplepath", "simplevolpath", "randomwalk"};
+            if (i.type == "ambientocclusion") {
+                render_["integrator"] = "ao";
+                render_.erase("max_depth");
+                if (boolean(i, "cossample", true) == false)
+                    unsupported(i, "cossample false is not supported (strahl samples the cosine)");
+                render_["ao_distance"] = number(i, "maxdistance", std::numeric_limits<float>::max() / 2);
+            } else if (pathLike.count(i.type)) {
+                const int depth = integer(i, "maxdepth", 5);
+                if (depth < 0 || depth > 1024) unsupported(i, "maxdepth must lie in 0 ... 1024");
+                render_["max_depth"] = depth;
+                if (const Parameter* ls = typed(i, "lightsampler", {"string"})) {
+                    const std::string& v = ls->strings[0];
+                    if (v != "bvh" && v != "power" && v != "uniform") bad(*ls, "expected bvh, power or uniform");
+                    render_["light_selection"] = v;
+                }
+                if (boolean(i, "regularize", false)) unsupported(i, "regularize is not supported");
+                // How the estimator samples, not what it estimates:
+                for (const char* ignored : {"samplelights", "samplebsdf", "bootstrapsamples", "chains",
+                                            "mutationsperpixel", "largestepprobability", "sigma",
+                                            "visualizestrategies", "visualizeweights", "photonsperiteration",
+                                            "iterations", "radius", "seed"})
+                    param(i, ignored);
+                if (i.type != "path" && i.type != "volpath" && i.type != "simplepath")
+                    meshio::reportWarning(i.place.text() + ": Integrator \"" + i.type +
+                                          "\": rendered by strahl's path tracer (the same image, other noise)");
+            } else {
+                unsupported(i, "this integrator is not supported");
+            }
+            refuseUnread(i);
+        }
+    }
+
+    // --- spectra and textures -------------------------------------------
+    enum class Use { Reflectance, Unbounded, Light };
+
+    // An RGB colour from an rgb, spectrum or blackbody parameter.
+    glm::dvec3 spectrum(const Parameter& p, Use use) const {
+        if (p.type == "rgb") {
+            if (p.numbers.size() != 3) bad(p, "expected three numbers");
+            const glm::dvec3 c(p.numbers[0], p.numbers[1], p.numbers[2]);
+            if (c.r < 0 || c.g < 0 || c.b < 0) bad(p, "a colour must not be negative");
+            if (use == Use::Reflectance && (c.r > 1 || c.g > 1 || c.b > 1))
+                bad(p, "a reflectance above 1 is not physical (pbrt clamps it; give at most 1)");
+            return c;
+        }
+        if (p.type == "blackbody") {
+            if (use != Use::Light) bad(p, "a blackbody spectrum is only for lights");
+            return blackbody(p, p.numbers[0]);
+        }
+        if (p.type == "float" && use == Use::Unbounded && p.numbers.size() == 1) return glm::dvec3(p.numbers[0]);
+        if (p.type != "spectrum") bad(p, "expected an rgb, spectrum or blackbody value");
+        std::vector<double> wl, v;
+        if (!p.strings.empty()) {
+            const std::string& name = p.strings[0];
+            if (name == "stdillum-D65") {
+                if (use != Use::Light) bad(p, "an illuminant is only for lights");
+                return glm::dvec3(1.0);  // the white of sRGB, at luminance 1
+            }
+            if (name.rfind("metal-", 0) == 0 || name.rfind("glass-", 0) == 0 || name.rfind("stdillum-", 0) == 0 ||
+                name.rfind("canon_", 0) == 0 || name.rfind("nikon_", 0) == 0 || name.rfind("sony_", 0) == 0)
+                bad(p, "the named spectrum '" + name + "' is not supported here (docs/pbrt.md)");
+            const fs::path path = fs::path(name).is_absolute() ? fs::path(name) : s_.folder / name;
+            std::ifstream in(path);
+            if (!in) bad(p, "no named spectrum and no file '" + name + "' (looked at " + path.string() + ")");
+            std::vector<double> numbers;
+            std::string line;
+            while (std::getline(in, line)) {
+                line = line.substr(0, line.find('#'));
+                std::istringstream words(line);
+                double x;
+                while (words >> x) numbers.push_back(x);
+                if (!words.eof()) bad(p, path.string() + ": not a list of numbers");
+            }
+            spectrumPairs(p, numbers, wl, v);
+        } else {
+            spectrumPairs(p, p.numbers, wl, v);
+        }
+        glm::dvec3 rgb = spectrumToLinearSrgb(wl, v, use == Use::Light ? SpectrumUse::Emission : SpectrumUse::Reflectance);
+        rgb = glm::max(rgb, glm::dvec3(0.0));
+        if (use == Use::Reflectance) rgb = glm::min(rgb, glm::dvec3(1.0));
+        if (use == Use::Light) {
+            // pbrt-v4 divides a light's spectrum by its luminance (only an rgb
+            // light keeps its magnitude, through its illuminant).
+            const double y = luminance(rgb);
+            if (!(y > 0.0)) bad(p, "the spectrum has no luminance");
+            rgb /= y;
+        }
+        return rgb;
+    }
+
+    const Texture& texture(const Parameter& p, bool spectral) const {
+        if (p.strings.size() != 1) bad(p, "expected one texture name");
+        const auto& table = spectral ? s_.spectrumTextures : s_.floatTextures;
+        const auto found = table.find(p.strings[0]);
+        if (found == table.end())
+            bad(p, std::string("no ") + (spectral ? "spectrum" : "float") + " texture named \"" + p.strings[0] + "\"");
+        return found->second;
+    }
+
+    // pbrt's (u, v) mapping parameters as strahl's uv_transform, in the
+    // coordinates strahl's image lookups use, (s, t) = (u, 1 − v): pbrt
+    // reads the image at (su·u + du, 1 − (sv·v + dv)).
+    static void uvMapping(const Entity& t, json& out) {
+        if (text(t, "mapping", "uv") != "uv") unsupported(t, "only the \"uv\" texture mapping is supported");
+        const double su = number(t, "uscale", 1.0), sv = number(t, "vscale", 1.0);
+        const double du = number(t, "udelta", 0.0), dv = number(t, "vdelta", 0.0);
+        if (su != 1.0 || sv != 1.0 || du != 0.0 || dv != 0.0)
+            out["uv_transform"] = {{su, 0.0, du}, {0.0, sv, 1.0 - sv - dv}};
+    }
+
+    json imageTexture(const Texture& tex, bool spectral) const {
+        const Entity& t = tex.entity;
+        const Parameter* f = typed(t, "filename", {"string"});
+        if (!f) unsupported(t, "needs \"string filename\"");
+        const std::string path = file(*f);
+        json out = {{"texture", path}};
+        // 8-bit PNGs hold sRGB-encoded values by default in pbrt, other files linear.
+        std::string lower = path;
+        for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        const bool png = lower.size() > 4 && lower.substr(lower.size() - 4) == ".png";
+        const std::string encoding = text(t, "encoding", png ? "sRGB" : "linear");
+        if (encoding != "sRGB" && encoding != "linear") unsupported(t, "encoding \"" + encoding + "\" is not supported (sRGB, linear)");
+        // strahl decodes 8-bit colour images and reads scalar ones as stored.
+        if (spectral && encoding == "linear") out["raw"] = true;
+        if (!spectral && encoding == "sRGB") out["raw"] = false;
+        const double scale = number(t, "scale", 1.0);
+        if (scale != 1.0) out["scale"] = scale;
+        if (boolean(t, "invert", false)) unsupported(t, "invert is not supported");
+        const std::string wrap = text(t, "wrap", "repeat");
+        if (wrap == "clamp") out["wrap"] = "clamp";
+        else if (wrap != "repeat") unsupported(t, "wrap \"" + wrap + "\" is not supported (repeat, clamp)");
+        const std::string filter = text(t, "filter", "bilinear");
+        if (filter == "bilinear") out["filter"] = "bilinear";
+        else if (filter == "point") out["filter"] = "nearest";
+        else if (filter != "trilinear" && filter != "ewa" && filter != "EWA")
+            unsupported(t, "filter \"" + filter + "\" is not supported");
+        param(t, "maxanisotropy");
+        uvMapping(t, out);
+        if (!spectral) out["channel"] = "r";
+        return out;
+    }
+
+    // A texture as a strahl colour (spectral) or scalar input.
+    json textureValue(const Parameter& p, bool spectral, Use use) const {
+        const Texture& tex = texture(p, spectral);
+        const Entity& t = tex.entity;
+        json out;
+        if (t.type == "imagemap") {
+            out = imageTexture(tex, spectral);
+        } else if (t.type == "constant") {
+            const Parameter* v = param(t, "value");
+            if (!v) unsupported(t, "needs \"value\"");
+            out = spectral ? color(spectrum(*v, use)) : json(scalarOf(*v));
+        } else if (t.type == "scale") {
+            const Parameter* inner = param(t, "tex");
+            const Parameter* s = param(t, "scale");
+            const double factor = s ? constantScalar(*s) : 1.0;
+            if (!inner) out = spectral ? json(1.0) : json(1.0);
+            else out = input(*inner, spectral, use);
+            out = scaled(out, factor, t);
+        } else if (t.type == "checkerboard") {
+            if (!spectral) unsupported(t, "a float checkerboard is not supported");
+            if (integer(t, "dimension", 2) != 2) unsupported(t, "only the 2D checkerboard is supported");
+            const Parameter* t1 = param(t, "tex1");
+            const Parameter* t2 = param(t, "tex2");
+            const glm::dvec3 c1 = t1 ? constantColor(*t1, use) : glm::dvec3(1.0);
+            const glm::dvec3 c2 = t2 ? constantColor(*t2, use) : glm::dvec3(0.0);
+            if (text(t, "mapping", "uv") != "uv") unsupported(t, "only the \"uv\" texture mapping is supported");
+            const double su = number(t, "uscale", 1.0), sv = number(t, "vscale", 1.0);
+            if (number(t, "udelta", 0.0) != 0.0 || number(t, "vdelta", 0.0) != 0.0)
+                unsupported(t, "udelta and vdelta are not supported on a checkerboard");
+            // pbrt: tex1 where ⌊su·u⌋ + ⌊sv·v⌋ is even. strahl's checkerboard
+            // of scale k has squares 1/(2k) wide, counted from the top (1 − v),
+            // so k = s/2; flipping v swaps the parity when sv is even.
+            if (!(su > 0 && sv > 0) || sv != std::floor(sv))
+                unsupported(t, "a checkerboard needs positive scales and a whole vscale");
+            const bool swap = std::fmod(sv, 2.0) == 0.0;
+            out = {{"checkerboard", {{"color0", color(swap ? c2 : c1)}, {"color1", color(swap ? c1 : c2)},
+                                     {"scale", {su / 2.0, sv / 2.0}}}}};
+        } else {
+            unsupported(t, "this texture is not supported (imagemap, constant, scale, checkerboard)");
+        }
+        refuseUnread(t);
+        return out;
+    }
+
+    static json scaled(json value, double factor, const Entity& where) {
+        if (factor == 1.0) return value;
+        if (value.is_number()) return value.get<double>() * factor;
+        if (value.is_array()) {
+            for (json& c : value) c = c.get<double>() * factor;
+            return value;
+        }
+        if (value.contains("checkerboard")) {
+            value["scale"] = factor;
+            return value;
+        }
+        if (value.contains("scale")) {
+            if (value["scale"].is_number()) value["scale"] = value["scale"].get<double>() * factor;
+            else unsupported(where, "a scale of a scaled texture is not supported");
+        } else {
+            value["scale"] = factor;
+        }
+        return value;
+    }
+
+    double scalarOf(const Parameter& p) const {
+        if (p.type != "float" || p.numbers.size() != 1) bad(p, "expected one float");
+        return p.numbers[0];
+    }
+    double constantScalar(const Parameter& p) const {
+        if (p.type == "texture") {
+            const Texture& tex = texture(p, false);
+            if (tex.entity.type != "constant") bad(p, "only a constant texture is supported here");
+            const Parameter* v = param(tex.entity, "value");
+            if (!v) unsupported(tex.entity, "needs \"value\"");
+            refuseUnread(tex.entity);
+            return scalarOf(*v);
+        }
+        return scalarOf(p);
+    }
+    glm::dvec3 constantColor(const Parameter& p, Use use) const {
+        if (p.type == "texture") {
+            const Texture& tex = texture(p, true);
+            if (tex.entity.type != "constant") bad(p, "only constant colours are supported here");
+            const Parameter* v = param(tex.entity, "value");
+            if (!v) unsupported(tex.entity, "needs \"value\"");
+            refuseUnread(tex.entity);
+            return spectrum(*v, use);
+        }
+        return spectrum(p, use);
+    }
+
+    // A material input: a constant or a texture.
+    json input(const Parameter& p, bool spectral, Use use) const {
+        if (p.type == "texture") return textureValue(p, spectral, use);
+        if (spectral) return color(spectrum(p, use));
+        return scalarOf(p);
+    }
+    std::optional<json> colorInput(const Entity& e, const std::string& name, Use use = Use::Reflectance) const {
+        const Parameter* p = param(e, name);
+        if (!p) return std::nullopt;
+        return input(*p, true, use);
+    }
+    std::optional<json> floatInput(const Entity& e, const std::string& name) const {
+        const Parameter* p = param(e, name);
+        if (!p) return std::nullopt;
+        return input(*p, false, Use::Unbounded);
+    }
+
+    // --- materials ------------------------------------------------------
+    // pbrt's roughness as strahl's: pbrt's GGX alpha is the roughness itself,
+    // or √roughness when remaproughness (the default) is on; strahl's
+    // roughness is √alpha.
+    json roughness(const Entity& m, json value, bool remap) const {
+        auto convert = [&](double r) {
+            if (r < 0.0) unsupported(m, "roughness must not be negative");
+            const double alpha = remap ? std::sqrt(r) : r;
+            if (alpha > 1.0) unsupported(m, "a GGX alpha above 1 is not supported");
+            return std::sqrt(alpha);
+        };
+        if (value.is_number()) return convert(value.get<double>());
+        unsupported(m, "a textured roughness is not supported (strahl's roughness is √alpha, a texture cannot be remapped)");
+    }
+
+    // Sets roughness keys from pbrt's roughness/uroughness/vroughness.
+    void microfacets(const Entity& m, json& out, double fallback) const {
+        const bool remap = boolean(m, "remaproughness", true);
+        const std::optional<json> r = floatInput(m, "roughness");
+        const std::optional<json> u = floatInput(m, "uroughness");
+        const std::optional<json> v = floatInput(m, "vroughness");
+        const json ru = u ? *u : (r ? *r : json(fallback));
+        const json rv = v ? *v : (r ? *r : json(fallback));
+        const json a = roughness(m, ru, remap), b = roughness(m, rv, remap);
+        if (a == b) {
+            if (a.get<double>() != 0.0) out["roughness"] = a;
+        } else {
+            out["roughness_u"] = a;
+            out["roughness_v"] = b;
+        }
+    }
+
+    double eta(const Entity& m, const std::string& name, double fallback) const {
+        const Parameter* p = param(m, name);
+        if (!p) return fallback;
+        if (p->type == "float") return scalarOf(*p);
+        if (p->type == "spectrum" && !p->strings.empty()) {
+            for (const NamedGlass& g : kGlasses)
+                if (p->strings[0] == g.name) return g.ior;
+            bad(*p, "unknown named spectrum for an index of refraction (docs/pbrt.md lists the glasses)");
+        }
+        if (p->type == "texture") bad(*p, "a textured index of refraction is not supported");
+        bad(*p, "a spectrally varying index of refraction is not supported (give a float)");
+    }
+
+    json conductorEtaK(const Entity& m, json& out) const {
+        const Parameter* etaP = param(m, "eta");
+        const Parameter* kP = param(m, "k");
+        const Parameter* refl = param(m, "reflectance");
+        if (refl && (etaP || kP)) unsupported(m, "give either reflectance or eta and k");
+        if (refl) {
+            // pbrt: eta 1 and k = 2√r / √(1 − r), per channel.
+            const glm::dvec3 r = constantColor(*refl, Use::Reflectance);
+            const glm::dvec3 k = 2.0 * glm::sqrt(r) / glm::sqrt(glm::max(1.0 - r, glm::dvec3(1e-4)));
+            out["eta"] = 1.0;
+            out["k"] = color(k);
+            return out;
+        }
+        auto metal = [&](const Parameter* p, const char* which, const std::string& fallback) -> glm::dvec3 {
+            std::string name = fallback;
+            if (p) {
+                if (p->type == "spectrum" && !p->strings.empty()) name = p->strings[0];
+                else if (p->type == "texture") bad(*p, "a textured eta or k is not supported");
+                else return spectrum(*p, Use::Unbounded);
+            }
+            // metal-Cu-eta: Mitsuba's measured data for the same metal, reduced
+            // to RGB (docs/mitsuba.md).
+            const std::string suffix = std::string("-") + which;
+            if (name.rfind("metal-", 0) == 0 && name.size() > 6 + suffix.size() &&
+                name.substr(name.size() - suffix.size()) == suffix) {
+                const std::string element = name.substr(6, name.size() - 6 - suffix.size());
+                if (const auto c = mitsuba::namedConductor(element)) return which[0] == 'e' ? c->eta : c->k;
+            }
+            if (p) bad(*p, "unknown named spectrum '" + name + "' (docs/pbrt.md lists the metals)");
+            fail("internal: no data for ", name);
+        };
+        out["eta"] = color(metal(etaP, "eta", "metal-Cu-eta"));
+        out["k"] = color(metal(kP, "k", "metal-Cu-k"));
+        return out;
+    }
+
+    // A pbrt material as a strahl material object (no name): its type and keys.
+    json materialObject(const Entity& m, int depth) {
+        if (depth > 16) unsupported(m, "mix materials nested deeper than 16");
+        json out;
+        param(m, "type");
+        if (m.type == "diffuse") {
+            out = {{"type", "diffuse"}};
+            out["color"] = colorInput(m, "reflectance").value_or(json(0.5));
+        } else if (m.type == "coateddiffuse") {
+            // A Lambert base under a dielectric coat with the inter-reflections
+            // between them: strahl's plastic with the base colour in the series.
+            out = {{"type", "plastic"}, {"nonlinear", true}};
+            out["color"] = colorInput(m, "reflectance").value_or(json(0.5));
+            const double ior = eta(m, "eta", 1.5);
+            if (!(ior > 1.0 && ior <= 4.0)) unsupported(m, "eta must lie in (1, 4]");
+            out["ior"] = ior;
+            microfacets(m, out, 0.0);
+            if (out.contains("roughness_u")) unsupported(m, "an anisotropic coat is not supported");
+            if (out.contains("roughness")) out["coat_transmittance"] = "microfacet";
+            if (const Parameter* a = param(m, "albedo"); a && glm::length(constantColor(*a, Use::Reflectance)) > 0.0)
+                bad(*a, "a scattering medium in the coat is not supported (albedo must be 0)");
+            param(m, "g");
+            // thickness only matters with albedo (docs/pbrt.md); maxdepth and
+            // nsamples tune pbrt's stochastic evaluation.
+            for (const char* ignored : {"thickness", "maxdepth", "nsamples"}) param(m, ignored);
+        } else if (m.type == "conductor") {
+            out = {{"type", "conductor"}};
+            conductorEtaK(m, out);
+            microfacets(m, out, 0.0);
+        } else if (m.type == "dielectric" || m.type == "thindielectric") {
+            const double ior = eta(m, "eta", 1.5);
+            if (!(ior > 1.0 && ior <= 4.0)) unsupported(m, "eta must lie in (1, 4] (strahl has no index below 1)");
+            if (m.type == "thindielectric") {
+                out = {{"type", "thin_dielectric"}, {"ior", ior}};
+            } else {
+                out = {{"type", "dielectric"}, {"ior", ior}};
+                microfacets(m, out, 0.0);
+                if (out.contains("roughness_u")) unsupported(m, "an anisotropic rough dielectric is not supported");
+            }
+        } else if (m.type == "mix") {
+            const Parameter* names = typed(m, "materials", {"string"});
+            if (!names || names->strings.size() != 2) unsupported(m, "needs \"string materials\" with two names");
+            json parts = json::array();
+            for (const std::string& name : names->strings) {
+                const auto found = s_.namedMaterials.find(name);
+                if (found == s_.namedMaterials.end()) bad(*names, "no material named \"" + name + "\"");
+                const Entity& part = s_.materials[static_cast<size_t>(found->second)];
+                json object = materialObject(part, depth + 1);
+                for (const char* common : {"normal_map", "opacity"})
+                    if (object.contains(common)) unsupported(part, "a normal map inside a mix is not supported");
+                parts.push_back(object);
+            }
+            out = {{"type", "blend"}, {"materials", parts}};
+            // pbrt picks the second material with probability amount.
+            const std::optional<json> amount = floatInput(m, "amount");
+            out["weight"] = amount.value_or(json(0.5));
+        } else if (m.type == "interface") {
+            // A boundary between media, invisible to light.
+            out = {{"type", "diffuse"}, {"opacity", 0}};
+        } else {
+            unsupported(m, "this material is not supported (diffuse, coateddiffuse, conductor, dielectric, "
+                           "thindielectric, mix, interface)");
+        }
+        if (const Parameter* n = param(m, "normalmap")) {
+            if (n->type != "string") bad(*n, "expected a file name");
+            out["normal_map"] = file(*n);
+        }
+        if (const Parameter* d = m.params.find("displacement")) bad(*d, "displacement is not supported");
+        refuseUnread(m);
+        return out;
+    }
+
+    // The strahl material for a shape: its pbrt material, with the shape's
+    // area light as emission and its alpha as opacity. Made once per
+    // combination.
+    std::string material(const Shape& shape) {
+        const Entity& m = s_.materials[static_cast<size_t>(shape.material)];
+        std::string key = std::to_string(shape.material);
+        std::string name = m.directive == "MakeNamedMaterial" ? std::string()
+                           : shape.material == 0      ? std::string("pbrt-default")
+                                                      : m.type + "@" + m.place.text();
+        if (name.empty())
+            for (const auto& [n, i] : s_.namedMaterials)
+                if (i == shape.material) name = n;
+        json emission;
+        bool twoSided = false;
+        if (shape.areaLight >= 0) {
+            const Entity& light = s_.areaLights[static_cast<size_t>(shape.areaLight)];
+            key += "+light" + std::to_string(shape.areaLight);
+            name += "+" + light.type + "@" + light.place.text();
+            emission = areaEmission(light, shape, twoSided);
+        }
+        json opacity;
+        if (const Parameter* a = shape.entity.params.find("alpha")) {
+            a->used = true;
+            opacity = a->type == "texture" ? textureValue(*a, false, Use::Unbounded) : json(scalarOf(*a));
+            if (opacity.is_number() && opacity.get<double>() == 1.0) opacity = nullptr;
+            if (!opacity.is_null()) {
+                key += "+alpha" + opacity.dump();
+                name += "+alpha@" + a->place.text();
+            }
+        }
+        if (const auto found = madeMaterials_.find(key); found != madeMaterials_.end()) return found->second;
+        json object = materialObject(m, 0);
+        if (!emission.is_null()) {
+            if (!opacity.is_null()) unsupported(shape.entity, "an area light on a shape with alpha is not supported");
+            object["emission"] = emission;
+            if (twoSided) object["two_sided"] = true;
+        }
+        if (!opacity.is_null()) {
+            if (object.contains("opacity")) unsupported(shape.entity, "alpha on an interface material");
+            object["opacity"] = opacity;
+        }
+        std::string unique = name;
+        for (int i = 2; !materialNames_.insert(unique).second || unique == "default"; ++i)
+            unique = name + "#" + std::to_string(i);
+        object["name"] = unique;
+        materials_.push_back(object);
+        madeMaterials_[key] = unique;
+        return unique;
+    }
+
+    json areaEmission(const Entity& light, const Shape& shape, bool& twoSided) const {
+        if (light.type != "diffuse") unsupported(light, "only the \"diffuse\" area light is supported");
+        const Parameter* L = param(light, "L");
+        glm::dvec3 radiance = L ? spectrum(*L, Use::Light) : glm::dvec3(1.0);
+        double scale = number(light, "scale", 1.0);
+        twoSided = boolean(light, "twosided", false);
+        if (const Parameter* f = light.params.find("filename")) bad(*f, "an image on an area light is not supported");
+        if (const Parameter* power = typed(light, "power", {"float"})) {
+            // pbrt: the radiance that gives the shape this power (W), k_e = π
+            // (2π two-sided) × the area; an rgb radiance keeps its colour.
+            const double area = shapeArea(shape);
+            const double k = (twoSided ? 2.0 : 1.0) * glm::pi<double>() * area;
+            if (!(area > 0.0)) unsupported(shape.entity, "power needs a shape with an area");
+            scale *= power->numbers[0] / k;
+        }
+        refuseUnread(light);
+        return color(radiance * scale);
+    }
+
+    // The world-space area of a shape, for an area light's power.
+    double shapeArea(const Shape& shape) const {
+        const Entity& e = shape.entity;
+        if (e.type != "trianglemesh") unsupported(e, "an area light given by power needs a trianglemesh");
+        const Parameter* P = e.params.find("P");
+        const Parameter* idx = e.params.find("indices");
+        if (!P) return 0.0;
+        std::vector<uint32_t> indices;
+        if (idx) for (double i : idx->numbers) indices.push_back(static_cast<uint32_t>(i));
+        else indices = {0, 1, 2};
+        double area = 0.0;
+        for (size_t i = 0; i + 2 < indices.size(); i += 3) {
+            auto at = [&](uint32_t k) {
+                if (3 * size_t(k) + 2 >= P->numbers.size()) bad(*idx, "an index is out of range");
+                return transformPoint(shape.toWorld, {P->numbers[3 * k], P->numbers[3 * k + 1], P->numbers[3 * k + 2]});
+            };
+            area += 0.5 * glm::length(glm::cross(at(indices[i + 1]) - at(indices[i]), at(indices[i + 2]) - at(indices[i])));
+        }
+        return area;
+    }
+
+    // --- shapes ---------------------------------------------------------
+    void shape(const Shape& s, bool world, json& into) {
+        const Entity& e = s.entity;
+        glm::dmat4 local(1.0);  // the shape's own placement before its CTM
+        json shape;
+        bool hasNormals = false;
+        const bool emitter = s.areaLight >= 0;
+        if (e.type == "trianglemesh") {
+            shape = triangleMesh(e, hasNormals);
+        } else if (e.type == "plymesh") {
+            const Parameter* f = typed(e, "filename", {"string"});
+            if (!f) unsupported(e, "needs \"string filename\"");
+            const std::string path = file(*f);
+            if (path.size() > 3 && path.substr(path.size() - 3) == ".gz") bad(*f, "compressed PLY files (.ply.gz) are not supported yet");
+            if (e.params.find("displacement")) bad(*e.params.find("displacement"), "displacement is not supported");
+            param(e, "edgelength");
+            shape = {{"type", "mesh"}, {"file", path}};
+            hasNormals = plyHasNormals(path);
+        } else if (e.type == "sphere") {
+            const double radius = number(e, "radius", 1.0);
+            if (!(radius > 0.0)) unsupported(e, "radius must be positive");
+            if (number(e, "zmin", -radius) > -radius || number(e, "zmax", radius) < radius ||
+                number(e, "phimax", 360.0) < 360.0)
+                unsupported(e, "a partial sphere (zmin, zmax, phimax) is not supported");
+            local = glm::dmat4(radius);
+            local[3][3] = 1.0;
+            // Exact as an implicit surface; an emitter (or one turned inside
+            // out) becomes a fine mesh, which next-event estimation samples.
+            shape = emitter || s.reverseOrientation
+                        ? json{{"type", "parametric"}, {"surface", {{"type", "sphere"}, {"radius", 1}}},
+                               {"tessellation", {{"segments", {256, 128}}}}}
+                        : json{{"type", "implicit"}, {"surface", {{"type", "sphere"}, {"radius", 1}}}};
+        } else if (e.type == "disk") {
+            const double radius = number(e, "radius", 1.0), inner = number(e, "innerradius", 0.0);
+            const double height = number(e, "height", 0.0);
+            if (!(radius > 0.0) || inner < 0.0 || inner >= radius) unsupported(e, "needs 0 <= innerradius < radius");
+            if (number(e, "phimax", 360.0) < 360.0) unsupported(e, "a partial disk (phimax) is not supported");
+            // The annulus in z = height facing +z: the profile from the rim
+            // inwards turns about z with the normal up.
+            shape = {{"type", "parametric"},
+                     {"surface", {{"type", "revolution"}, {"profile", {{radius, height}, {inner, height}}}}},
+                     {"tessellation", {{"segments", {256, 1}}}}};
+        } else if (e.type == "cylinder") {
+            const double radius = number(e, "radius", 1.0);
+            const double zmin = number(e, "zmin", -1.0), zmax = number(e, "zmax", 1.0);
+            if (!(radius > 0.0) || !(zmin < zmax)) unsupported(e, "needs radius > 0 and zmin < zmax");
+            if (number(e, "phimax", 360.0) < 360.0) unsupported(e, "a partial cylinder (phimax) is not supported");
+            const json surface = {{"type", "cylinder"}, {"radius", radius}, {"z_min", zmin}, {"z_max", zmax}};
+            shape = emitter || s.reverseOrientation
+                        ? json{{"type", "parametric"}, {"surface", surface}, {"tessellation", {{"segments", {256, 1}}}}}
+                        : json{{"type", "parametric"}, {"mode", "direct"}, {"surface", surface}};
+        } else if (e.type == "bilinearmesh" || e.type == "loopsubdiv" || e.type == "curve") {
+            unsupported(e, "this shape is not supported yet (bilinear patches, subdivision surfaces and curves "
+                           "are issue 22)");
+        } else {
+            unsupported(e, "this shape is not supported (trianglemesh, plymesh, sphere, disk, cylinder)");
+        }
+        shape["transform"] = matrixOp((world ? mirror_ : glm::dmat4(1.0)) * s.toWorld * local);
+        // pbrt's front is the winding's side transformed, turned around by
+        // ReverseOrientation, or with shading normals the side they point to
+        // (pbrt ignores ReverseOrientation then); strahl keeps the winding's
+        // side through any transform, mirrors included (docs/pbrt.md).
+        if (s.reverseOrientation && !hasNormals) shape["flip_normals"] = true;
+        shape["material"] = material(s);
+        // The analytic shapes' (u, v) are not pbrt's: no textures on them.
+        if ((e.type == "sphere" || e.type == "disk" || e.type == "cylinder") &&
+            usesTextures(materialNamed(shape["material"])))
+            unsupported(e, "a textured material on a " + e.type +
+                               " is not supported yet (its (u, v) are not pbrt's; use a mesh)");
+        shape["name"] = e.type + "@" + e.place.text();
+        refuseUnread(e);
+        into.push_back(shape);
+    }
+
+    json triangleMesh(const Entity& e, bool& hasNormals) const {
+        const Parameter* P = typed(e, "P", {"point3"});
+        if (!P) unsupported(e, "needs \"point3 P\"");
+        const size_t n = P->numbers.size() / 3;
+        const Parameter* idx = typed(e, "indices", {"integer"});
+        json indices = json::array();
+        if (idx) {
+            if (idx->numbers.size() % 3 != 0 || idx->numbers.empty())
+                bad(*idx, "expected three indices per triangle");
+            for (double i : idx->numbers) {
+                if (i < 0 || i >= static_cast<double>(n))
+                    bad(*idx, "index " + std::to_string(static_cast<long long>(i)) + " is out of range (" +
+                                  std::to_string(n) + " points)");
+                indices.push_back(static_cast<uint32_t>(i));
+            }
+        } else {
+            if (n != 3) unsupported(e, "\"integer indices\" may only be left out for a single triangle");
+            indices = {0u, 1u, 2u};
+        }
+        json positions = json::array();
+        for (size_t i = 0; i < n; ++i)
+            positions.push_back({P->numbers[3 * i], P->numbers[3 * i + 1], P->numbers[3 * i + 2]});
+        json mesh = {{"type", "mesh"}, {"positions", positions}, {"indices", indices}};
+        if (const Parameter* N = typed(e, "N", {"normal"})) {
+            if (N->numbers.size() != 3 * n) bad(*N, "expected one normal per point");
+            json normals = json::array();
+            for (size_t i = 0; i < n; ++i)
+                normals.push_back({N->numbers[3 * i], N->numbers[3 * i + 1], N->numbers[3 * i + 2]});
+            mesh["normals"] = normals;
+            hasNormals = true;
+        }
+        if (const Parameter* uv = typed(e, "uv", {"point2", "float"})) {
+            if (uv->numbers.size() != 2 * n) bad(*uv, "expected one (u, v) per point");
+            json uvs = json::array();
+            for (size_t i = 0; i < n; ++i) uvs.push_back({uv->numbers[2 * i], uv->numbers[2 * i + 1]});
+            mesh["uvs"] = uvs;
+        }
+        if (const Parameter* S = e.params.find("S")) bad(*S, "per-vertex tangents are not supported");
+        param(e, "faceIndices");  // ptex face ids: no ptex textures here
+        return mesh;
+    }
+
+    // Whether a PLY file's vertices carry normals (nx), from its header.
+    static bool plyHasNormals(const std::string& path) {
+        std::ifstream in(path, std::ios::binary);
+        std::string line;
+        bool inVertex = false;
+        for (int lines = 0; lines < 1000 && std::getline(in, line); ++lines) {
+            if (line.rfind("end_header", 0) == 0) break;
+            if (line.rfind("element ", 0) == 0) inVertex = line.rfind("element vertex", 0) == 0;
+            if (inVertex && line.rfind("property", 0) == 0 && line.size() > 3 &&
+                line.substr(line.find_last_of(' ') + 1) == "nx")
+                return true;
+        }
+        return false;
+    }
+
+    const json& materialNamed(const std::string& name) const {
+        for (const json& m : materials_)
+            if (m["name"] == name) return m;
+        fail("internal: no material '", name, "' was made");
+    }
+
+    // Whether a material reads any texture or checkerboard.
+    static bool usesTextures(const json& value) {
+        if (value.is_object()) {
+            if (value.contains("texture") || value.contains("checkerboard")) return true;
+            for (const auto& item : value.items())
+                if (item.key() != "normal_map" && usesTextures(item.value())) return true;
+        } else if (value.is_array()) {
+            for (const json& item : value)
+                if (usesTextures(item)) return true;
+        }
+        return false;
+    }
+
+    std::string group(const std::string& object) {
+        if (const auto found = madeGroups_.find(object); found != madeGroups_.end()) return found->second;
+        const ObjectDefinition& def = s_.objects.at(object);
+        json shapes = json::array();
+        for (const Shape& s : def.shapes) shape(s, false, shapes);
+        if (shapes.empty()) fail(def.place.text(), ": ObjectBegin \"", object, "\": the object has no shapes");
+        groups_.push_back({{"name", object}, {"shapes", shapes}});
+        madeGroups_[object] = object;
+        return object;
+    }
+
+    // --- lights ---------------------------------------------------------
+    void light(const Light& l) {
+        const Entity& e = l.entity;
+        const glm::dmat4 m = mirror_ * l.toWorld;
+        const double scale = number(e, "scale", 1.0);
+        json out;
+        auto spectral = [&](const char* name) {
+            const Parameter* p = param(e, name);
+            return p ? spectrum(*p, Use::Light) : glm::dvec3(1.0);
+        };
+        if (e.type == "point" || e.type == "spot") {
+            glm::dvec3 I = spectral("I") * scale;
+            const glm::dvec3 from = point(e, "from", glm::dvec3(0.0));
+            out = {{"type", e.type}, {"position", vec3(transformPoint(m, from))}};
+            double kE = 4.0 * glm::pi<double>();
+            if (e.type == "spot") {
+                const glm::dvec3 to = point(e, "to", glm::dvec3(0, 0, 1));
+                const double cone = number(e, "coneangle", 30.0), delta = number(e, "conedeltaangle", 5.0);
+                if (!(cone > 0.0 && cone <= 180.0) || delta < 0.0) unsupported(e, "needs 0 < coneangle <= 180 and conedeltaangle >= 0");
+                const glm::dvec3 dir = transformVector(m, to - from);
+                if (!(glm::length(dir) > 0.0)) unsupported(e, "from and to coincide");
+                out["direction"] = vec3(glm::normalize(dir));
+                out["cone_angle"] = cone;
+                out["falloff_start"] = std::max(0.0, cone - delta);
+                const double cosTotal = std::cos(glm::radians(cone)), cosStart = std::cos(glm::radians(std::max(0.0, cone - delta)));
+                kE = 2.0 * glm::pi<double>() * (1.0 - 0.5 * (cosStart + cosTotal));
+            }
+            // pbrt normalises only a spectrum's luminance, never an rgb's
+            // colour, before power scales it: I · power / k_e.
+            if (const Parameter* power = typed(e, "power", {"float"})) I *= power->numbers[0] / kE;
+            out["intensity"] = color(I);
+        } else if (e.type == "distant") {
+            glm::dvec3 L = spectral("L") * scale;
+            const glm::dvec3 from = point(e, "from", glm::dvec3(0.0)), to = point(e, "to", glm::dvec3(0, 0, 1));
+            const glm::dvec3 dir = transformVector(m, to - from);
+            if (!(glm::length(dir) > 0.0)) unsupported(e, "from and to coincide");
+            if (const Parameter* E = typed(e, "illuminance", {"float"})) L *= E->numbers[0];
+            out = {{"type", "directional"}, {"direction", vec3(glm::normalize(dir))}, {"irradiance", color(L)}};
+        } else if (e.type == "infinite") {
+            if (const Parameter* f = e.params.find("filename"))
+                bad(*f, "an image infinite light (pbrt-v4's equal-area octahedral map) is not supported yet");
+            glm::dvec3 L = spectral("L") * scale;
+            if (const Parameter* E = typed(e, "illuminance", {"float"}))
+                // A constant sky of radiance L gives an upward plane E = π L.
+                L *= E->numbers[0] / glm::pi<double>();
+            param(e, "portal");  // where pbrt samples, not what it shows
+            out = {{"type", "sky"}, {"radiance", color(L)}};
+        } else {
+            unsupported(e, "this light is not supported (point, spot, distant, infinite)");
+        }
+        refuseUnread(e);
+        lights_.push_back(out);
+    }
+};
+
+}  // namespace
+
+json toStrahlDocument(const Scene& scene, const fs::path& cwd) { return Converter(scene, cwd).convert(); }
+
+}  // namespace strahl::scene_detail::pbrt

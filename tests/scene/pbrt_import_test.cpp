@@ -1,0 +1,295 @@
+// The pbrt-v4 importer (src/scene/pbrt_*.cpp, docs/pbrt.md): the language
+// (tokens, parameter lists, transforms, the graphics state, named materials,
+// objects and instances, includes), the mappings whose numbers are easy to get
+// wrong (the mirrored camera, fov on the shorter axis, roughness remapping,
+// light normalisation, checkerboard parity), and one clear error, with file
+// and line, for what is malformed or not supported.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "strahl/scene/scene_desc.h"
+#include "strahl/scene/scene_document.h"
+#include "test_support.h"
+
+namespace strahl {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+using testing::HasSubstr;
+
+// A scene around `world`: a camera at (0, 0, 5) looking at the origin, a
+// 64 x 32 film, and `options` before WorldBegin.
+std::string scene(const std::string& world, const std::string& options = "") {
+    return "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 45\n"
+           "Film \"rgb\" \"integer xresolution\" 64 \"integer yresolution\" 32\n" +
+           options + "\nWorldBegin\n" + world + "\n";
+}
+const std::string kTriangle = "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]\n";
+
+json document(const std::string& text, const fs::path& file = "scene.pbrt") {
+    return json::parse(SceneDocument::fromText(text, file).text());
+}
+std::string errorOf(const std::string& text, const fs::path& file = "scene.pbrt") {
+    return test::errorMessage([&] { SceneDocument::fromText(text, file).parse(); });
+}
+glm::dvec3 vec(const json& v) { return {v[0].get<double>(), v[1].get<double>(), v[2].get<double>()}; }
+// A shape's transform as a matrix (the importer writes one "matrix" op, row by row).
+glm::dmat4 matrixOf(const json& shape) {
+    const json& m = shape["transform"][0]["matrix"];
+    glm::dmat4 out(1.0);
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) out[c][r] = m[4 * r + c].get<double>();
+    return out;
+}
+void expectNear(glm::dvec3 a, glm::dvec3 b, double tolerance = 1e-9) {
+    EXPECT_NEAR(a.x, b.x, tolerance);
+    EXPECT_NEAR(a.y, b.y, tolerance);
+    EXPECT_NEAR(a.z, b.z, tolerance);
+}
+
+TEST(PbrtImport, TheImageRightIsPbrtsCameraXSoTheWorldIsMirrored) {
+    // pbrt's LookAt puts image right along up x dir; strahl's u = v x w is
+    // the other way round, so the world is mirrored in x.
+    const json doc = document(scene(kTriangle));
+    const json& cam = doc["camera"];
+    const glm::dvec3 up = vec(cam["up"]), back = vec(cam["back"]);
+    const glm::dvec3 right = glm::cross(up, back);  // strahl's u
+    // pbrt: dir (0, 0, -1), up (0, 1, 0): right = up x dir = (-1, 0, 0),
+    // which the mirror makes (1, 0, 0).
+    expectNear(glm::normalize(right), {1, 0, 0});
+    expectNear(vec(cam["eye"]), {0, 0, 5});
+    const glm::dmat4 m = matrixOf(doc["shapes"][0]);
+    expectNear(glm::dvec3(m * glm::dvec4(1, 0, 0, 1)), {-1, 0, 0});
+    // So pbrt's +x (image left here) stays on the image's left.
+
+    // A camera that mirrors already ("Scale -1 1 1" before LookAt, as exporters
+    // write) leaves the world as it is.
+    const json exported = document("Scale -1 1 1\n" + scene(kTriangle));
+    expectNear(glm::dvec3(matrixOf(exported["shapes"][0]) * glm::dvec4(1, 0, 0, 1)), {1, 0, 0});
+    const glm::dvec3 right2 = glm::cross(vec(exported["camera"]["up"]), vec(exported["camera"]["back"]));
+    expectNear(glm::normalize(right2), {1, 0, 0});
+}
+
+TEST(PbrtImport, FovSpansTheShorterImageAxis) {
+    const json wide = document(scene(kTriangle));  // 64 x 32: fov is vertical
+    const json& w = wide["camera"]["window"];
+    const double d = wide["camera"]["focal_distance"].get<double>();
+    EXPECT_NEAR(w[3].get<double>() / d, std::tan(glm::radians(45.0) / 2), 1e-12);
+    EXPECT_NEAR(w[1].get<double>() / d, 2 * std::tan(glm::radians(45.0) / 2), 1e-12);
+    const json tall = document("Camera \"perspective\" \"float fov\" 45\n"
+                               "Film \"rgb\" \"integer xresolution\" 32 \"integer yresolution\" 64\nWorldBegin\n" +
+                               kTriangle);
+    const json& t = tall["camera"]["window"];
+    const double dt = tall["camera"]["focal_distance"].get<double>();
+    EXPECT_NEAR(t[1].get<double>() / dt, std::tan(glm::radians(45.0) / 2), 1e-12);
+    EXPECT_NEAR(t[3].get<double>() / dt, 2 * std::tan(glm::radians(45.0) / 2), 1e-12);
+    // pbrt's defaults: 1280 x 720, fov 90, 16 samples, path tracing to depth 5.
+    const json defaults = document("WorldBegin\n" + kTriangle);
+    EXPECT_EQ(defaults["film"]["width"], 1280);
+    EXPECT_EQ(defaults["film"]["height"], 720);
+    EXPECT_EQ(defaults["render"]["spp"], 16);
+    EXPECT_EQ(defaults["render"]["max_depth"], 5);
+    EXPECT_EQ(defaults["render"]["integrator"], "path");
+}
+
+TEST(PbrtImport, TransformsPostMultiplyAndTransformIsColumnMajor) {
+    const json doc = document(scene("AttributeBegin\nTranslate 1 0 0\nScale 2 2 2\n" + kTriangle +
+                                    "AttributeEnd\n"
+                                    "AttributeBegin\nRotate 90 0 0 1\n" + kTriangle + "AttributeEnd\n"
+                                    "AttributeBegin\nTransform [1 0 0 0  0 1 0 0  0 0 1 0  3 4 5 1]\n" +
+                                    kTriangle + "AttributeEnd\n" +
+                                    "AttributeBegin\nCoordSysTransform \"camera\"\n" + kTriangle + "AttributeEnd\n"));
+    const glm::dmat4 mirror = glm::scale(glm::dmat4(1.0), glm::dvec3(-1, 1, 1));
+    auto world = [&](int shape, glm::dvec3 p) {
+        return glm::dvec3(mirror * matrixOf(doc["shapes"][shape]) * glm::dvec4(p, 1.0));
+    };
+    expectNear(world(0, {1, 0, 0}), {3, 0, 0});  // translate(scale(p))
+    expectNear(world(1, {1, 0, 0}), {0, 1, 0});  // Rotate 90 about z: +x to +y
+    expectNear(world(2, {0, 0, 0}), {3, 4, 5});  // the translation is the 4th column
+    expectNear(world(3, {0, 0, 0}), {0, 0, 5});  // the camera's origin
+    expectNear(world(3, {0, 0, 1}), {0, 0, 4});  // looking down -z
+}
+
+TEST(PbrtImport, MaterialsMapOntoStrahlsModels) {
+    const json doc = document(scene(
+        "Material \"conductor\" \"float roughness\" 0.04\n" + kTriangle +
+        "Material \"conductor\" \"float roughness\" 0.04 \"bool remaproughness\" false\n" + kTriangle +
+        "Material \"dielectric\" \"spectrum eta\" \"glass-BK7\"\n" + kTriangle +
+        "Material \"coateddiffuse\" \"rgb reflectance\" [0.5 0.2 0.1]\n" + kTriangle +
+        "MakeNamedMaterial \"a\" \"string type\" \"diffuse\" \"rgb reflectance\" [1 0 0]\n"
+        "MakeNamedMaterial \"b\" \"string type\" \"thindielectric\"\n"
+        "Material \"mix\" \"string materials\" [\"a\" \"b\"] \"float amount\" 0.25\n" + kTriangle +
+        "Material \"conductor\" \"rgb reflectance\" [0.5 0.5 0.5]\n" + kTriangle));
+    const json& m = doc["materials"];
+    ASSERT_EQ(m.size(), 6u);
+    // Copper by default; GGX alpha = sqrt(roughness) when remapped, strahl's
+    // roughness = sqrt(alpha).
+    EXPECT_EQ(m[0]["type"], "conductor");
+    EXPECT_NEAR(m[0]["roughness"].get<double>(), std::sqrt(0.2), 1e-12);
+    EXPECT_NEAR(vec(m[0]["eta"]).g, 0.923749, 1e-6);  // copper's green
+    EXPECT_NEAR(m[1]["roughness"].get<double>(), 0.2, 1e-12);
+    EXPECT_EQ(m[2]["type"], "dielectric");
+    EXPECT_NEAR(m[2]["ior"].get<double>(), 1.5185, 1e-4);
+    EXPECT_EQ(m[3]["type"], "plastic");
+    EXPECT_EQ(m[3]["nonlinear"], true);
+    EXPECT_EQ(m[4]["type"], "blend");
+    EXPECT_EQ(m[4]["weight"], 0.25);  // pbrt picks the second with probability amount
+    EXPECT_EQ(m[4]["materials"][0]["type"], "diffuse");
+    EXPECT_EQ(m[4]["materials"][1]["type"], "thin_dielectric");
+    // reflectance r: eta 1, k = 2 sqrt(r) / sqrt(1 - r) = 2 for r = 1/2.
+    EXPECT_EQ(m[5]["eta"], 1.0);
+    EXPECT_NEAR(m[5]["k"].get<double>(), 2.0, 1e-12);
+    // The whole document is a valid strahl scene.
+    EXPECT_NO_THROW(SceneDocument::fromText(scene(kTriangle), "scene.pbrt").parse());
+}
+
+TEST(PbrtImport, NamedMaterialsMayComeLaterAndObjectsAreGroups) {
+    const json doc = document(scene(
+        "NamedMaterial \"late\"\n"
+        "ObjectBegin \"tri\"\nTranslate 0 1 0\n" + kTriangle + "ObjectEnd\n"
+        "AttributeBegin\nTranslate 2 0 0\nObjectInstance \"tri\"\nAttributeEnd\n"
+        "ObjectInstance \"tri\"\n"
+        "MakeNamedMaterial \"late\" \"string type\" \"diffuse\" \"rgb reflectance\" [0.1 0.2 0.3]\n"));
+    ASSERT_EQ(doc["groups"].size(), 1u);
+    EXPECT_EQ(doc["groups"][0]["shapes"][0]["material"], "late");
+    ASSERT_EQ(doc["shapes"].size(), 2u);
+    EXPECT_EQ(doc["shapes"][0]["type"], "instance");
+    // world = mirror . CTM at the instance . CTM at the definition
+    const glm::dmat4 instance = matrixOf(doc["shapes"][0]);
+    const glm::dmat4 inner = matrixOf(doc["groups"][0]["shapes"][0]);
+    expectNear(glm::dvec3(instance * inner * glm::dvec4(0, 0, 0, 1)), {-2, 1, 0});
+    EXPECT_THAT(errorOf(scene("NamedMaterial \"nowhere\"\n" + kTriangle)),
+                HasSubstr("scene.pbrt:6: NamedMaterial: no material named \"nowhere\""));
+    EXPECT_THAT(errorOf(scene("ObjectInstance \"nothing\"\n" + kTriangle)),
+                HasSubstr("scene.pbrt:6: ObjectInstance: no object named \"nothing\""));
+}
+
+TEST(PbrtImport, LightsKeepRgbValuesAndNormaliseSpectraToLuminanceOne) {
+    const json doc = document(scene(
+        kTriangle + "LightSource \"point\" \"rgb I\" [1 2 3] \"float scale\" 2 \"point3 from\" [1 0 0]\n"
+                    "LightSource \"point\" \"blackbody I\" 3000 \"float scale\" 4\n"
+                    "LightSource \"point\" \"rgb I\" [1 1 1] \"float power\" 100\n"
+                    "LightSource \"spot\" \"point3 from\" [0 0 0] \"point3 to\" [0 -1 0] \"float coneangle\" 20 "
+                    "\"float conedeltaangle\" 5\n"
+                    "LightSource \"distant\" \"point3 from\" [0 0 0] \"point3 to\" [1 0 0] \"rgb L\" [3 3 3]\n"
+                    "LightSource \"infinite\" \"rgb L\" [0.5 0.5 0.5]\n"));
+    const json& l = doc["lights"];
+    ASSERT_EQ(l.size(), 6u);
+    expectNear(vec(l[0]["intensity"]), {2, 4, 6});
+    expectNear(vec(l[0]["position"]), {-1, 0, 0});  // mirrored
+    const glm::dvec3 bb = vec(l[1]["intensity"]);
+    EXPECT_NEAR(0.2126729 * bb.r + 0.7151522 * bb.g + 0.0721750 * bb.b, 4.0, 1e-9);
+    EXPECT_GT(bb.r, bb.b);  // 3000 K is reddish
+    EXPECT_NEAR(l[2]["intensity"].get<double>(), 100 / (4 * M_PI), 1e-9);
+    EXPECT_EQ(l[3]["type"], "spot");
+    EXPECT_EQ(l[3]["cone_angle"], 20.0);
+    EXPECT_EQ(l[3]["falloff_start"], 15.0);
+    expectNear(vec(l[3]["direction"]), {0, -1, 0});
+    EXPECT_EQ(l[4]["type"], "directional");
+    expectNear(vec(l[4]["direction"]), {-1, 0, 0});  // from -> to, mirrored
+    EXPECT_EQ(l[4]["irradiance"], 3.0);
+    EXPECT_EQ(l[5]["type"], "sky");
+    EXPECT_EQ(l[5]["radiance"], 0.5);
+}
+
+TEST(PbrtImport, AreaLightsAreTheEmissionOfTheShapesMaterial) {
+    const json doc = document(scene("AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [4 4 4] \"bool twosided\" true\n"
+                                    "ReverseOrientation\n" + kTriangle + "AttributeEnd\n" + kTriangle));
+    const json& m = doc["materials"];
+    ASSERT_EQ(m.size(), 2u);  // pbrt's default material, with and without the light
+    EXPECT_EQ(m[0]["emission"], 4.0);
+    EXPECT_EQ(m[0]["two_sided"], true);
+    EXPECT_EQ(m[0]["color"], 0.5);  // pbrt's default material: diffuse 0.5
+    EXPECT_FALSE(m[1].contains("emission"));
+    EXPECT_EQ(doc["shapes"][0]["flip_normals"], true);
+    EXPECT_FALSE(doc["shapes"][1].contains("flip_normals"));
+    EXPECT_EQ(doc["shapes"][1]["material"], "pbrt-default");
+}
+
+TEST(PbrtImport, CheckerboardsKeepPbrtsParity) {
+    // pbrt: tex1 where floor(8u) + floor(8v) is even; strahl counts rows from
+    // the top (1 - v), which swaps the parity for an even vscale.
+    json doc = document(scene("Texture \"c\" \"spectrum\" \"checkerboard\" \"float uscale\" 8 \"float vscale\" 8 "
+                              "\"rgb tex1\" [1 1 1] \"rgb tex2\" [0 0 0]\nMaterial \"diffuse\" \"texture reflectance\" \"c\"\n" +
+                              kTriangle));
+    const json& c = doc["materials"][0]["color"]["checkerboard"];
+    EXPECT_EQ(c["color0"], 0.0);
+    EXPECT_EQ(c["color1"], 1.0);
+    EXPECT_EQ(c["scale"][0], 4.0);
+    doc = document(scene("Texture \"c\" \"spectrum\" \"checkerboard\" \"float uscale\" 3 \"float vscale\" 3 "
+                         "\"rgb tex1\" [1 1 1] \"rgb tex2\" [0 0 0]\nMaterial \"diffuse\" \"texture reflectance\" \"c\"\n" +
+                         kTriangle));
+    EXPECT_EQ(doc["materials"][0]["color"]["checkerboard"]["color0"], 1.0);
+}
+
+TEST(PbrtImport, IncludesSpliceFilesInAndCyclesAreRefused) {
+    const fs::path dir = test::scratchDir("pbrt-include");
+    test::writeFile(dir / "geometry.pbrt", "# the geometry\n" + kTriangle);
+    test::writeFile(dir / "scene.pbrt", scene("Include \"geometry.pbrt\"\nImport \"geometry.pbrt\"\n"));
+    EXPECT_EQ(SceneDocument::read(dir / "scene.pbrt").parse().shapes.size(), 2u);
+    test::writeFile(dir / "loop.pbrt", scene("Include \"loop.pbrt\"\n"));
+    EXPECT_THAT(test::errorMessage([&] { SceneDocument::read(dir / "loop.pbrt"); }),
+                HasSubstr("loop.pbrt:6: Include \"loop.pbrt\": the file includes itself (a cycle)"));
+    test::writeFile(dir / "missing.pbrt", scene("Include \"nowhere.pbrt\"\n"));
+    EXPECT_THAT(test::errorMessage([&] { SceneDocument::read(dir / "missing.pbrt"); }),
+                HasSubstr("missing.pbrt:6: Include \"nowhere.pbrt\": cannot open"));
+}
+
+TEST(PbrtImport, MalformedOrUnsupportedInputIsOneErrorWithItsLine) {
+    EXPECT_THAT(errorOf(scene("Frobnicate 1 2 3\n")), HasSubstr("scene.pbrt:6: unknown directive 'Frobnicate'"));
+    EXPECT_THAT(errorOf(scene("AttributeBegin\n" + kTriangle)),
+                HasSubstr("scene.pbrt:6: AttributeBegin without a matching AttributeEnd"));
+    EXPECT_THAT(errorOf(scene("AttributeEnd\n")), HasSubstr("scene.pbrt:6: AttributeEnd without a matching AttributeBegin"));
+    EXPECT_THAT(errorOf(scene("Shape \"sphere\" \"float radius\" \"big\"\n")),
+                HasSubstr("scene.pbrt:6: \"float radius\": expected a number, got '\"big\"'"));
+    EXPECT_THAT(errorOf(scene("Shape \"sphere\" \"integer radius\" 1.5\n")),
+                HasSubstr("scene.pbrt:6: \"integer radius\": expected an integer"));
+    EXPECT_THAT(errorOf(scene("Shape \"sphere\" \"quaternion q\" [1 2 3 4]\n")),
+                HasSubstr("unknown parameter type 'quaternion'"));
+    EXPECT_THAT(errorOf(scene("Shape \"sphere\" \"float radius\" [1 2")), HasSubstr("the file ends where ] should follow"));
+    EXPECT_THAT(errorOf(scene("Shape \"sphere\" \"string name\" \"open")), HasSubstr("a string runs past the end of its line"));
+    EXPECT_THAT(errorOf(scene("Shape \"curve\" \"point3 P\" [0 0 0 1 0 0 2 0 0 3 0 0]\n")),
+                HasSubstr("scene.pbrt:6: Shape \"curve\": this shape is not supported yet"));
+    EXPECT_THAT(errorOf(scene("Shape \"sphere\" \"float radius\" 1 \"float wobble\" 2\n")),
+                HasSubstr("scene.pbrt:6: Shape \"sphere\": parameter \"float wobble\" is not supported"));
+    EXPECT_THAT(errorOf(scene("Material \"measured\" \"string filename\" \"x.bsdf\"\n" + kTriangle)),
+                HasSubstr("scene.pbrt:6: Material \"measured\": this material is not supported"));
+    EXPECT_THAT(errorOf(scene("MakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n")),
+                HasSubstr("scene.pbrt:6: MakeNamedMedium: participating media are not supported"));
+    EXPECT_THAT(errorOf(scene("LightSource \"goniometric\"\n" + kTriangle)),
+                HasSubstr("scene.pbrt:6: LightSource \"goniometric\": this light is not supported"));
+    EXPECT_THAT(errorOf(scene("ActiveTransform EndTime\nTranslate 1 0 0\nActiveTransform All\n" + kTriangle)),
+                HasSubstr("scene.pbrt:9: Shape: the start and end transforms differ (ActiveTransform): motion blur"));
+    EXPECT_THAT(errorOf(scene(kTriangle, "Camera \"realistic\"")),
+                HasSubstr("Camera \"realistic\": only the perspective and orthographic cameras are supported"));
+    EXPECT_THAT(errorOf("Camera \"perspective\"\n" + kTriangle), HasSubstr("Shape must come after WorldBegin"));
+    EXPECT_THAT(errorOf("Camera \"perspective\"\n"), HasSubstr("scene.pbrt: the file has no WorldBegin"));
+    EXPECT_THAT(errorOf(scene("Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 3]\n")),
+                HasSubstr("index 3 is out of range (3 points)"));
+    EXPECT_THAT(errorOf(scene(kTriangle, "ColorSpace \"aces2065-1\"")), HasSubstr("strahl renders in sRGB"));
+    EXPECT_THAT(errorOf(scene("")), HasSubstr("the scene has no shapes"));
+}
+
+TEST(PbrtImport, ParameterListsTakeBareOrBracketedValuesAndCommentsAnywhere) {
+    const json doc = document(scene("# a comment\nShape \"sphere\" # another\n  \"float radius\" [ 2 ]\n"
+                                    "Shape \"sphere\" \"float radius\" 3 \"float zmin\" -3\n"
+                                    "AttributeBegin AreaLightSource \"diffuse\" \"bool twosided\" \"true\" "
+                                    "\"rgb L\" [1 1 1] Shape \"disk\" AttributeEnd\n"));
+    EXPECT_EQ(doc["shapes"][0]["type"], "implicit");
+    EXPECT_NEAR(matrixOf(doc["shapes"][0])[1][1], 2.0, 0);
+    EXPECT_NEAR(matrixOf(doc["shapes"][1])[1][1], 3.0, 0);
+    EXPECT_EQ(doc["materials"][1]["two_sided"], true);  // a quoted bool, as pbrt-v3 wrote it
+    EXPECT_EQ(doc["shapes"][2]["type"], "parametric");
+}
+
+}  // namespace
+}  // namespace strahl
