@@ -94,6 +94,14 @@ inline void runMitsubaXml(std::string_view input) {
     (void)scene;
 }
 
+// The input is a pbrt-v4 scene file (its Includes resolve in the scratch folder).
+inline void runPbrt(std::string_view input) {
+    quietMeshWarnings();
+    const SceneDesc scene =
+        SceneDocument::fromText(std::string(input), scratch() / "scene.pbrt").parse();
+    (void)scene;
+}
+
 // ---- meshes ----------------------------------------------------------------------
 
 // The input is a PLY file, ascii or binary.

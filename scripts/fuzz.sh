@@ -9,12 +9,12 @@
 #
 # Usage: scripts/fuzz.sh [--seconds N] [target...]
 #   --seconds N   fuzzing time per target (default 30)
-#   target        fuzz_scene_json, fuzz_mitsuba_xml, fuzz_ply, fuzz_serialized, fuzz_obj,
+#   target        fuzz_scene_json, fuzz_mitsuba_xml, fuzz_pbrt, fuzz_ply, fuzz_serialized, fuzz_obj,
 #                 fuzz_gltf, fuzz_formula (default: all)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="$root/build-fuzz"
-all_targets=(fuzz_scene_json fuzz_mitsuba_xml fuzz_ply fuzz_serialized fuzz_obj fuzz_gltf fuzz_formula)
+all_targets=(fuzz_scene_json fuzz_mitsuba_xml fuzz_pbrt fuzz_ply fuzz_serialized fuzz_obj fuzz_gltf fuzz_formula)
 
 seconds=30
 targets=()

@@ -47,7 +47,7 @@ fuzz_log="$root/build/fuzz.log"
 "$root/scripts/fuzz.sh" --seconds "${FUZZ_SECONDS:-30}" 2>&1 | tee "$fuzz_log"
 fuzz_status=${PIPESTATUS[0]}
 read -r fuzz_total fuzz_clean <<<"$(sed -n 's/^fuzz: \([0-9]*\) targets, \([0-9]*\) clean$/\1 \2/p' "$fuzz_log")"
-fuzz_total="${fuzz_total:-5}" fuzz_clean="${fuzz_clean:-0}"
+fuzz_total="${fuzz_total:-8}" fuzz_clean="${fuzz_clean:-0}"
 if ((fuzz_status != 0 && fuzz_clean == fuzz_total)); then fuzz_clean=$((fuzz_total - 1)); fi
 
 passed=$((release_pass + sanitize_pass + fuzz_clean))

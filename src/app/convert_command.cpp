@@ -1,4 +1,4 @@
-// `strahl convert`: a scene in another renderer's format (a Mitsuba 3 .xml)
+// `strahl convert`: a scene in another renderer's format (a Mitsuba 3 .xml, a pbrt-v4 .pbrt)
 // written as the strahl JSON scene it imports as, so a user can read and edit
 // what the importer understood (docs/cli.md#strahl-convert). Rendering the
 // written file gives the same image, bit for bit, as rendering the original.

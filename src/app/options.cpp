@@ -24,12 +24,14 @@ constexpr const char* kDescription =
     "  strahl render SCENE.json -o image.exr -o image.png   render a scene\n"
     "  strahl render scene.xml -D spp=64 -o image.exr        render a Mitsuba 3 scene\n"
     "  strahl convert scene.xml -o scene.json                 a Mitsuba 3 scene as strahl JSON\n"
+    "  strahl render scene.pbrt -o image.exr                  render a pbrt-v4 scene\n"
     "  strahl info SCENE.json                                primitive counts, bounds, memory\n"
     "  strahl bench --out results.csv --plot cost.svg        Embree vs naive vs raster\n"
     "  strahl assemble r*.exr -o image.exr                   stitch --region renders\n"
     "  strahl merge part*.exr -o image.exr                   add up --sample-offset renders\n"
     "  strahl denoise noisy.exr -o clean.exr -o clean.png     denoise a --denoise render\n\n"
-    "The scene format is documented in docs/scene-format.md (Mitsuba 3 scenes: docs/mitsuba.md),\n"
+    "The scene format is documented in docs/scene-format.md (Mitsuba 3 scenes: docs/mitsuba.md,\n"
+    "pbrt-v4 scenes: docs/pbrt.md),\n"
     "the options in docs/cli.md.\n"
     "Exit status: 0 success, 1 error (bad scene, mesh or output), 2 bad command line.";
 
@@ -168,8 +170,8 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
 
     CLI::App* render = app.add_subcommand("render", "Render a scene to one or more image files");
     render->add_option("scene", o.scene,
-                       "Scene file: strahl JSON (docs/scene-format.md) or Mitsuba 3 XML "
-                       "(.xml, docs/mitsuba.md)")
+                       "Scene file: strahl JSON (docs/scene-format.md), Mitsuba 3 XML "
+                       "(.xml, docs/mitsuba.md) or pbrt-v4 (.pbrt, docs/pbrt.md)")
         ->required();
     render->add_option("-o,--output", o.outputs,
                        "Output image; repeat for several. .exr is scene-linear with AOVs; "
@@ -308,8 +310,8 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
     addMemoryOptions(*info, o);
 
     CLI::App* convert = app.add_subcommand(
-        "convert", "Write a scene (a Mitsuba 3 .xml) as the strahl JSON scene it imports as");
-    convert->add_option("scene", o.scene, "Scene file (Mitsuba 3 .xml or strahl JSON)")->required();
+        "convert", "Write a scene (a Mitsuba 3 .xml, a pbrt-v4 .pbrt) as the strahl JSON scene it imports as");
+    convert->add_option("scene", o.scene, "Scene file (Mitsuba 3 .xml, pbrt-v4 .pbrt or strahl JSON)")->required();
     convert->add_option("-o,--output", o.convertOutput,
                         "The strahl JSON scene to write; its file names are relative to its "
                         "folder")

@@ -195,7 +195,9 @@ private:
         if (p.strings.size() != 1) bad(p, "expected one file name");
         const fs::path name = p.strings[0];
         const fs::path path = name.is_absolute() ? name : s_.folder / name;
-        if (!fs::exists(path)) bad(p, "no such file '" + p.strings[0] + "' (looked at " + path.string() + ")");
+        std::error_code ec;
+        if (!fs::is_regular_file(path, ec))
+            bad(p, "no such file '" + p.strings[0] + "' (looked at " + path.string() + ")");
         return path.string();
     }
 
@@ -257,8 +259,9 @@ private:
                 if (xr && yr && x != y) unsupported(f, "different x and y radii are not supported");
                 film["filter"] = {{"type", film["filter"]}, {"radius", xr ? x : y}};
             }
-            if (f.type == "gaussian" && typed(f, "sigma", {"float"}))
-                unsupported(f, "a sigma other than strahl's (radius / 3) is not supported");
+            // strahl's Gaussian keeps sigma 0.5 whatever its radius, as pbrt's default.
+            if (const Parameter* sigma = typed(f, "sigma", {"float"}); sigma && sigma->numbers[0] != 0.5)
+                bad(*sigma, "a Gaussian sigma other than 0.5 is not supported");
             refuseUnread(f);
         } else {
             // pbrt-v4's default filter: a Gaussian of radius 1.5 and sigma 0.5.
@@ -409,7 +412,9 @@ private:
                 name.rfind("canon_", 0) == 0 || name.rfind("nikon_", 0) == 0 || name.rfind("sony_", 0) == 0)
                 bad(p, "the named spectrum '" + name + "' is not supported here (docs/pbrt.md)");
             const fs::path path = fs::path(name).is_absolute() ? fs::path(name) : s_.folder / name;
-            std::ifstream in(path);
+            std::error_code ec;
+            std::ifstream in;
+            if (fs::is_regular_file(path, ec)) in.open(path);
             if (!in) bad(p, "no named spectrum and no file '" + name + "' (looked at " + path.string() + ")");
             std::vector<double> numbers;
             std::string line;

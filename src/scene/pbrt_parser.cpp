@@ -378,6 +378,10 @@ private:
         const fs::path path = fs::path(name).is_absolute() ? fs::path(name) : scene_.folder / name;
         if (openFiles_.count(fs::weakly_canonical(fs::absolute(path))))
             error(tokens, t, std::string(t.text) + " \"" + name + "\": the file includes itself (a cycle)");
+        std::error_code ec;
+        if (!fs::is_regular_file(path, ec))
+            error(tokens, t, std::string(t.text) + " \"" + name + "\": cannot open " + path.string() +
+                                 (fs::exists(path, ec) ? " (not a regular file)" : " (no such file)"));
         std::ifstream in(path, std::ios::binary);
         if (!in) error(tokens, t, std::string(t.text) + " \"" + name + "\": cannot open " + path.string());
         std::ostringstream text;

@@ -294,7 +294,8 @@ TEST(BadInputCorpusTable, CoversEveryFolderWithSmallFiles) {
         EXPECT_TRUE(rows.insert(c.name).second) << "two rows for " << c.name;
         EXPECT_TRUE(c.status == 0 || c.status == 1 || c.status == 2) << c.name;
         EXPECT_TRUE(c.command.find("scene.json") != std::string::npos ||
-                    c.command.find("scene.xml") != std::string::npos)
+                    c.command.find("scene.xml") != std::string::npos ||
+                    c.command.find("scene.pbrt") != std::string::npos)
             << c.name;
         const std::string prefix = c.status == 0 ? "strahl: warning: " : "strahl: error: ";
         EXPECT_EQ(c.stderrPattern.rfind(prefix, 0), 0u) << c.name << ": " << c.stderrPattern;
@@ -309,7 +310,8 @@ TEST(BadInputCorpusTable, CoversEveryFolderWithSmallFiles) {
         const std::string name = entry.path().filename().string();
         folders.insert(name);
         EXPECT_TRUE(rows.count(name)) << "folder " << name << " has no row in the README table";
-        EXPECT_TRUE(fs::exists(entry.path() / "scene.json") || fs::exists(entry.path() / "scene.xml"))
+        EXPECT_TRUE(fs::exists(entry.path() / "scene.json") || fs::exists(entry.path() / "scene.xml") ||
+                    fs::exists(entry.path() / "scene.pbrt"))
             << name;
         for (const auto& file : fs::recursive_directory_iterator(entry.path())) {
             if (file.is_regular_file()) {

@@ -33,6 +33,7 @@ struct FuzzTarget {
 const FuzzTarget kTargets[] = {
     {"fuzz_scene_json", &fuzz::runSceneJson},
     {"fuzz_mitsuba_xml", &fuzz::runMitsubaXml},
+    {"fuzz_pbrt", &fuzz::runPbrt},
     {"fuzz_ply", &fuzz::runPly},
     {"fuzz_serialized", &fuzz::runSerialized},
     {"fuzz_obj", &fuzz::runObj},
