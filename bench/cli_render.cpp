@@ -66,7 +66,9 @@ RenderTimes renderWithCli(const fs::path& scene, const fs::path& out,
     std::ifstream in(stats);
     const nlohmann::json j = nlohmann::json::parse(in);
     fs::remove(stats);
-    return {j["timings"]["render"].get<double>(), j["timings"]["denoise"].get<double>()};
+    const nlohmann::json& t = j["timings"];
+    return {t["render"].get<double>(),      t["denoise"].get<double>(), t["load"].get<double>(),
+            t["bvh"].get<double>(),         t["first_pixel"].get<double>(), t["total"].get<double>()};
 }
 
 void writeOpenSphereScene(const std::filesystem::path& file) {

@@ -20,6 +20,7 @@ std::vector<float> rgb(const Channels& channels, const std::string& prefix);
 // What a render's --stats file says about its time, in seconds.
 struct RenderTimes {
     double render = 0.0, denoise = 0.0;
+    double load = 0.0, bvh = 0.0, firstPixel = 0.0, total = 0.0;  // as timings.* (docs/farm.md)
 };
 
 // Runs `strahl render SCENE -q --exr-float -o OUT --stats ... ARGS` (the

@@ -1,6 +1,7 @@
 // `strahl info`: counts, bounds, memory and the camera of a scene, after
 // loading it and building the BVH (docs/cli.md#strahl-info).
 
+#include <chrono>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -45,10 +46,13 @@ void printShapes(const std::vector<SceneShape>& shapes, const char* indent) {
 }  // namespace
 
 int runInfo(const Options& o) {
+    const auto started = std::chrono::steady_clock::now();
     const SceneDesc desc = patchedScene(o).parse();
+    const double sceneSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     BuildTimings timings;
     const BuildOptions build = buildOptions(o);
     const BuiltScene scene = buildScene(desc, build, &timings);
+    timings.loadSeconds += sceneSeconds;  // reading the scene file is part of the load
     const World& world = scene.world;
     const Bounds3 b = world.bounds();
     std::printf("scene      %s\n", desc.file.string().c_str());

@@ -167,12 +167,13 @@ public:
         }
         if (shapes.empty()) fail(label(), ": the scene has no shapes");
         for (const Light& light : s_.lights) this->light(light);
-        if (!materials_.empty()) doc_["materials"] = materials_;
-        if (!groups_.empty()) doc_["groups"] = groups_;
-        doc_["shapes"] = shapes;
-        if (!lights_.empty()) doc_["lights"] = lights_;
-        doc_["render"] = render_;
-        return doc_;
+        // Moved, not copied: an inline mesh may hold millions of numbers.
+        if (!materials_.empty()) doc_["materials"] = std::move(materials_);
+        if (!groups_.empty()) doc_["groups"] = std::move(groups_);
+        doc_["shapes"] = std::move(shapes);
+        if (!lights_.empty()) doc_["lights"] = std::move(lights_);
+        doc_["render"] = std::move(render_);
+        return std::move(doc_);
     }
 
 private:
@@ -916,7 +917,7 @@ private:
                                " is not supported yet (its (u, v) are not pbrt's; use a mesh)");
         shape["name"] = e.type + "@" + e.place.text();
         refuseUnread(e);
-        into.push_back(shape);
+        into.push_back(std::move(shape));
     }
 
     json triangleMesh(const Entity& e, bool& hasNormals) const {
@@ -926,6 +927,7 @@ private:
         const Parameter* idx = typed(e, "indices", {"integer"});
         json indices = json::array();
         if (idx) {
+            indices.get_ref<json::array_t&>().reserve(idx->numbers.size());
             if (idx->numbers.size() % 3 != 0 || idx->numbers.empty())
                 bad(*idx, "expected three indices per triangle");
             for (double i : idx->numbers) {
@@ -939,22 +941,25 @@ private:
             indices = {0u, 1u, 2u};
         }
         json positions = json::array();
+        positions.get_ref<json::array_t&>().reserve(n);
         for (size_t i = 0; i < n; ++i)
             positions.push_back({P->numbers[3 * i], P->numbers[3 * i + 1], P->numbers[3 * i + 2]});
-        json mesh = {{"type", "mesh"}, {"positions", positions}, {"indices", indices}};
+        json mesh = {{"type", "mesh"}};
+        mesh["positions"] = std::move(positions);
+        mesh["indices"] = std::move(indices);
         if (const Parameter* N = typed(e, "N", {"normal"})) {
             if (N->numbers.size() != 3 * n) bad(*N, "expected one normal per point");
             json normals = json::array();
             for (size_t i = 0; i < n; ++i)
                 normals.push_back({N->numbers[3 * i], N->numbers[3 * i + 1], N->numbers[3 * i + 2]});
-            mesh["normals"] = normals;
+            mesh["normals"] = std::move(normals);
             hasNormals = true;
         }
         if (const Parameter* uv = typed(e, "uv", {"point2", "float"})) {
             if (uv->numbers.size() != 2 * n) bad(*uv, "expected one (u, v) per point");
             json uvs = json::array();
             for (size_t i = 0; i < n; ++i) uvs.push_back({uv->numbers[2 * i], uv->numbers[2 * i + 1]});
-            mesh["uvs"] = uvs;
+            mesh["uvs"] = std::move(uvs);
         }
         if (const Parameter* S = e.params.find("S")) bad(*S, "per-vertex tangents are not supported");
         param(e, "faceIndices");  // ptex face ids: no ptex textures here
@@ -1001,7 +1006,9 @@ private:
         json shapes = json::array();
         for (const Shape& s : def.shapes) shape(s, false, shapes);
         if (shapes.empty()) fail(def.place.text(), ": ObjectBegin \"", object, "\": the object has no shapes");
-        groups_.push_back({{"name", object}, {"shapes", shapes}});
+        json group = {{"name", object}};
+        group["shapes"] = std::move(shapes);
+        groups_.push_back(std::move(group));
         madeGroups_[object] = object;
         return object;
     }

@@ -293,6 +293,15 @@ private:
     }
 
     static void value(Tokenizer& tokens, const Token& decl, const Token& v, const TypeInfo& info, Parameter& p) {
+        // Numbers, the common case, first and without building any message.
+        if (info.arity != 0 && !v.quoted() && std::string_view(info.name) != "bool") {
+            double x = 0.0;
+            if (parseNumber(v.text, x) && std::isfinite(x) &&
+                (std::string_view(info.name) != "integer" || x == std::floor(x))) {
+                p.numbers.push_back(x);
+                return;
+            }
+        }
         const std::string what = "\"" + unquote(decl.text) + "\"";
         if (info.arity == 0 || (std::string_view(info.name) == "spectrum" && v.quoted())) {
             if (!v.quoted()) error(tokens, v, what + ": expected a quoted string, got '" + std::string(v.text) + "'");

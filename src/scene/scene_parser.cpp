@@ -57,11 +57,28 @@ void checkMeshFile(const JsonValue& value, const fs::path& path) {
                    meshExtensionList(", ", ", "), ")");
 }
 
+// An element [x, y, z] of finite float numbers, read without building its
+// JSON pointer (large inline meshes: an imported pbrt trianglemesh has
+// millions); false sends the caller to JsonValue::at(i).vec3(), which
+// reports the error.
+bool readVec3Directly(const nlohmann::json& e, Vec3& out) {
+    if (!e.is_array() || e.size() != 3) return false;
+    for (int k = 0; k < 3; ++k) {
+        if (!e[k].is_number()) return false;
+        out[k] = static_cast<float>(e[k].get<double>());
+        if (!std::isfinite(out[k])) return false;
+    }
+    return true;
+}
+
 TriangleMesh parseInlineMesh(const JsonValue& v, const std::string& label) {
     TriangleMesh mesh;
     const JsonValue positions = v.get("positions");
     mesh.positions.reserve(positions.size());
-    for (size_t i = 0; i < positions.size(); ++i) mesh.positions.push_back(positions.at(i).vec3());
+    for (size_t i = 0; i < positions.size(); ++i) {
+        Vec3 p;
+        mesh.positions.push_back(readVec3Directly(positions.raw()[i], p) ? p : positions.at(i).vec3());
+    }
 
     const JsonValue indices = v.get("indices");
     if (indices.size() == 0) indices.fail("must contain at least one triangle");
@@ -69,11 +86,20 @@ TriangleMesh parseInlineMesh(const JsonValue& v, const std::string& label) {
         indices.fail("has ", indices.size(), " entries, not a multiple of 3 (triangles only)");
     mesh.indices.reserve(indices.size());
     for (size_t i = 0; i < indices.size(); ++i) {
+        const nlohmann::json& e = indices.raw()[i];
+        if (e.is_number_unsigned() && e.get<uint64_t>() <= std::numeric_limits<uint32_t>::max()) {
+            mesh.indices.push_back(static_cast<uint32_t>(e.get<uint64_t>()));
+            continue;
+        }
         mesh.indices.push_back(static_cast<uint32_t>(
             indices.at(i).unsignedInteger(std::numeric_limits<uint32_t>::max())));
     }
     if (auto normals = v.find("normals")) {
-        for (size_t i = 0; i < normals->size(); ++i) mesh.normals.push_back(normals->at(i).vec3());
+        mesh.normals.reserve(normals->size());
+        for (size_t i = 0; i < normals->size(); ++i) {
+            Vec3 n;
+            mesh.normals.push_back(readVec3Directly(normals->raw()[i], n) ? n : normals->at(i).vec3());
+        }
     }
     if (auto uvs = v.find("uvs")) {
         for (size_t i = 0; i < uvs->size(); ++i) mesh.uvs.push_back(uvs->at(i).vec2());

@@ -50,7 +50,7 @@ inline constexpr size_t kCompactBvhAboveTriangles = size_t(1) << 22;
 bool useCompactBvh(const BuildOptions& options, size_t storedTriangles);
 
 struct BuildTimings {
-    double loadSeconds = 0.0;  // reading and preparing meshes
+    double loadSeconds = 0.0;  // reading and preparing meshes (callers add reading the scene file)
     double bvhSeconds = 0.0;   // building the acceleration structure (0 for naive)
 };
 
