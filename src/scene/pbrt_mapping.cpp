@@ -1051,9 +1051,22 @@ private:
             if (!(glm::length(dir) > 0.0)) unsupported(e, "from and to coincide");
             if (const Parameter* E = typed(e, "illuminance", {"float"})) L *= E->numbers[0];
             out = {{"type", "directional"}, {"direction", vec3(glm::normalize(dir))}, {"irradiance", color(L)}};
+        } else if (e.type == "infinite" && e.params.find("filename")) {
+            // pbrt-v4's image: a square in the equal-area octahedral layout, +z
+            // up in the light's frame, looked up at the light-space direction
+            // of pbrt's world direction (the mirror of strahl's).
+            const Parameter* f = typed(e, "filename", {"string"});
+            if (e.params.find("L")) unsupported(e, "give either L or filename");
+            if (e.params.find("illuminance")) unsupported(e, "illuminance with an image is not supported");
+            const glm::dmat3 mapFromWorld = glm::inverse(glm::dmat3(l.toWorld)) * glm::dmat3(mirror_);
+            json rows = json::array();
+            for (int r = 0; r < 3; ++r)
+                for (int c = 0; c < 3; ++c) rows.push_back(mapFromWorld[c][r]);
+            param(e, "portal");  // where pbrt samples, not what it shows
+            out = {{"type", "environment"}, {"file", file(*f)}, {"mapping", "equal_area"},
+                   {"map_transform", rows}};
+            if (scale != 1.0) out["scale"] = scale;
         } else if (e.type == "infinite") {
-            if (const Parameter* f = e.params.find("filename"))
-                bad(*f, "an image infinite light (pbrt-v4's equal-area octahedral map) is not supported yet");
             glm::dvec3 L = spectral("L") * scale;
             if (const Parameter* E = typed(e, "illuminance", {"float"}))
                 // A constant sky of radiance L gives an upward plane E = π L.

@@ -15,6 +15,11 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include <OpenImageIO/imageio.h>
+
+#include "strahl/core/equal_area.h"
+#include "strahl/integrator/world.h"
+#include "strahl/scene/scene_builder.h"
 #include "strahl/scene/scene_desc.h"
 #include "strahl/scene/scene_document.h"
 #include "test_support.h"
@@ -277,6 +282,51 @@ TEST(PbrtImport, MalformedOrUnsupportedInputIsOneErrorWithItsLine) {
                 HasSubstr("index 3 is out of range (3 points)"));
     EXPECT_THAT(errorOf(scene(kTriangle, "ColorSpace \"aces2065-1\"")), HasSubstr("strahl renders in sRGB"));
     EXPECT_THAT(errorOf(scene("")), HasSubstr("the scene has no shapes"));
+}
+
+// An equal-area square that is 1 where the image's +z is up (z > 0) and 0 below.
+void writeUpperHemisphereMap(const fs::path& file, int n) {
+    std::vector<float> pixels(size_t(n) * size_t(n) * 3);
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            const Vec3 d = equalAreaSquareToSphere(Vec2((x + 0.5f) / n, (y + 0.5f) / n));
+            for (int c = 0; c < 3; ++c) pixels[(size_t(y) * n + x) * 3 + c] = d.z > 0.0f ? 1.0f : 0.0f;
+        }
+    auto out = OIIO::ImageOutput::create(file.string());
+    ASSERT_TRUE(out && out->open(file.string(), OIIO::ImageSpec(n, n, 3, OIIO::TypeDesc::FLOAT)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+    out->close();
+}
+
+TEST(PbrtImport, AnImageInfiniteLightIsAnEqualAreaMapInTheLightsFrame) {
+    const fs::path dir = test::scratchDir("pbrt-envmap");
+    writeUpperHemisphereMap(dir / "sky.exr", 64);
+    const auto world = [&](const std::string& transform) {
+        const SceneDesc d =
+            SceneDocument::fromText(scene("AttributeBegin " + transform +
+                                          "LightSource \"infinite\" \"string filename\" \"sky.exr\" "
+                                          "\"float scale\" 2\nAttributeEnd\n" + kTriangle),
+                                    dir / "scene.pbrt")
+                .parse();
+        return buildScene(d, BuildOptions{});
+    };
+    {
+        // pbrt's +z is up in the map; strahl's world is pbrt's mirrored in x,
+        // so +z stays +z.
+        const BuiltScene s = world("");
+        EXPECT_NEAR(s.world.escapedRadiance(Vec3(0.3f, 0.2f, 0.9f)).r, 2.0f, 1e-4f);
+        EXPECT_NEAR(s.world.escapedRadiance(Vec3(-0.3f, 0.2f, -0.9f)).r, 0.0f, 1e-4f);
+    }
+    {
+        // Rotate -90 about x turns the map's +z onto pbrt's (and strahl's) +y.
+        const BuiltScene s = world("Rotate -90 1 0 0 ");
+        EXPECT_NEAR(s.world.escapedRadiance(Vec3(0.2f, 0.9f, 0.3f)).r, 2.0f, 1e-4f);
+        EXPECT_NEAR(s.world.escapedRadiance(Vec3(0.2f, -0.9f, 0.3f)).r, 0.0f, 1e-4f);
+    }
+    EXPECT_THAT(errorOf(scene("LightSource \"infinite\" \"string filename\" \"sky.exr\" \"rgb L\" [1 1 1]\n" +
+                              kTriangle),
+                        dir / "scene.pbrt"),
+                HasSubstr("give either L or filename"));
 }
 
 TEST(PbrtImport, ParameterListsTakeBareOrBracketedValuesAndCommentsAnywhere) {

@@ -12,8 +12,17 @@
 //   rows       "centred": each row's values at its band's centre;  "centred"
 //              "poles": the rows stretched from the zenith to the
 //              nadir, as Mitsuba's envmap reads them (environment_map.h)
+//   mapping    "latlong", or "equal_area": a square image in the      "latlong"
+//              equal-area octahedral layout of pbrt-v4
+//              (core/equal_area.h), resampled into a lat-long map
+//              of twice its side by its side when the world is built
+//   map_transform  equal_area only: 9 numbers, row by row, the     identity
+//              linear map from world directions to the image's
+//              directions (normalised after; any invertible
+//              matrix, mirrors included)
 
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
 #include <memory>
@@ -25,6 +34,8 @@
 
 namespace strahl {
 
+enum class EnvironmentMapping { LatLong, EqualArea };
+
 struct EnvironmentLight {
     static constexpr std::array<std::string_view, 1> kNames = {"environment"};
 
@@ -33,17 +44,33 @@ struct EnvironmentLight {
     Mat3 worldToEnvironment{1.0f};  // rotation (orthonormal) into map space
     Color scale{1.0f};              // multiplies the map
     RowLayout rows = RowLayout::Centred;
+    EnvironmentMapping mapping = EnvironmentMapping::LatLong;
+    Mat3 mapFromWorld{1.0f};  // equal_area: world directions to the image's (map_transform)
 
     template <typename Reader>
     static EnvironmentLight parse(const Reader& r) {
         const auto& v = r.json();
-        v.requireKeys({"type", "file", "scale", "rotation", "rows"});
+        v.requireKeys({"type", "file", "scale", "rotation", "rows", "mapping", "map_transform"});
         EnvironmentLight l;
         l.file = r.existingFile(v.get("file"), "image file");
         if (auto scale = v.find("scale")) l.scale = scale->color();
         if (auto rows = v.find("rows"))
             l.rows = rows->oneOf({"centred", "poles"}) == "poles" ? RowLayout::PoleToPole
                                                                   : RowLayout::Centred;
+        if (auto mapping = v.find("mapping"))
+            l.mapping = mapping->oneOf({"latlong", "equal_area"}) == "equal_area" ? EnvironmentMapping::EqualArea
+                                                                                  : EnvironmentMapping::LatLong;
+        if (auto m = v.find("map_transform")) {
+            if (l.mapping != EnvironmentMapping::EqualArea) m->fail("applies to \"mapping\": \"equal_area\" only");
+            if (!m->raw().is_array() || m->raw().size() != 9)
+                m->fail("expected 9 numbers (a 3 x 3 matrix, row by row)");
+            for (int row = 0; row < 3; ++row)
+                for (int col = 0; col < 3; ++col) l.mapFromWorld[col][row] = m->at(size_t(3 * row + col)).number();
+            const float det = glm::determinant(l.mapFromWorld);
+            if (!(std::abs(det) > 1e-12f) || !std::isfinite(det)) m->fail("the matrix is singular");
+        }
+        if (l.mapping == EnvironmentMapping::EqualArea && v.find("rows"))
+            v.get("rows").fail("applies to \"mapping\": \"latlong\" only");
         float rotation = 0.0f;
         if (auto value = v.find("rotation")) rotation = value->numberIn(-360.0f, 360.0f, "degrees");
         // World to map space: the inverse of the map's rotation about +y.
@@ -51,10 +78,13 @@ struct EnvironmentLight {
             Mat3(glm::rotate(Mat4(1.0f), glm::radians(-rotation), Vec3(0.0f, 1.0f, 0.0f)));
         return l;
     }
-    // loader.environmentMap(file, rows) returns the map read from the file.
+    // loader.environmentMap(file, rows) returns the lat-long map read from the
+    // file, loader.equalAreaMap(file, mapFromWorld) one resampled from an
+    // equal-area square.
     template <typename Loader>
     void load(const Loader& loader) {
-        environment = loader.environmentMap(file, rows);
+        environment = mapping == EnvironmentMapping::EqualArea ? loader.equalAreaMap(file, mapFromWorld)
+                                                               : loader.environmentMap(file, rows);
     }
     void validate(size_t index) const {
         light_detail::checkColor(index, "scale", scale);
