@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <glm/glm.hpp>
@@ -178,6 +179,38 @@ TEST(PbrtConvert, ALandscapeOfABillionInstancedTrianglesLoadsWithinTheMemoryTarg
     ASSERT_NE(peak, std::string::npos) << r.out;
     const std::string figure = r.out.substr(peak + 14, r.out.find('\n', peak) - peak - 14);
     if (!sanitized()) EXPECT_TRUE(test::contains(figure, "MiB")) << "peak resident " << figure << " is not below 1 GiB";
+}
+
+TEST(PbrtConvert, TheDefaultSceneInPbrtFormRendersTheDefaultImage) {
+    // scenes/default.pbrt is scenes/default.json written for pbrt-v4 (its .obj
+    // as trianglemeshes, its .mtl as pbrt materials): the two render the same
+    // image up to noise. Means per quadrant and channel at 64 spp agree to
+    // 1 % (measured: 0.1 %; the camera rays differ in their last bits, so the
+    // noise is not the same noise).
+    const fs::path dir = test::scratchDir("pbrt-default");
+    const std::string common = " --width 64 --height 64 --spp 64 --seed 1 --exr-float -q -o ";
+    test::RunResult r = test::runStrahl("render " + (test::sourceDir() / "scenes/default.pbrt").string() + common +
+                                        (dir / "pbrt.exr").string());
+    ASSERT_EQ(r.status, 0) << r.err;
+    r = test::runStrahl("render " + (test::sourceDir() / "scenes/default.json").string() + common +
+                        (dir / "json.exr").string());
+    ASSERT_EQ(r.status, 0) << r.err;
+    const test::ExrFile a = test::readExr(dir / "pbrt.exr"), b = test::readExr(dir / "json.exr");
+    auto mean = [](const test::ExrFile& e, int qx, int qy, int c) {
+        const size_t channels = e.channels.size();
+        const size_t k = static_cast<size_t>(
+            std::find(e.channels.begin(), e.channels.end(), std::string(1, "RGB"[c])) - e.channels.begin());
+        EXPECT_LT(k, channels);
+        double sum = 0.0;
+        for (int y = 32 * qy; y < 32 * qy + 32; ++y)
+            for (int x = 32 * qx; x < 32 * qx + 32; ++x) sum += e.pixels[(size_t(y) * 64 + x) * channels + k];
+        return sum / (32 * 32);
+    };
+    for (int q = 0; q < 4; ++q)
+        for (int c = 0; c < 3; ++c) {
+            const double ma = mean(a, q % 2, q / 2, c), mb = mean(b, q % 2, q / 2, c);
+            EXPECT_NEAR(ma, mb, 0.01 * mb) << "quadrant " << q << " channel " << c;
+        }
 }
 
 TEST(PbrtConvert, TheStanfordBunnyLoadsThroughPlymesh) {

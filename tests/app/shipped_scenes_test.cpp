@@ -22,7 +22,9 @@ std::vector<fs::path> selfContainedScenes() {
     std::vector<fs::path> scenes;
     for (const auto& entry : fs::recursive_directory_iterator(test::sourceDir() / "scenes")) {
         const fs::path& path = entry.path();
-        if (path.extension() != ".json" || path.parent_path().filename() == "scale") continue;
+        if ((path.extension() != ".json" && path.extension() != ".pbrt") ||
+            path.parent_path().filename() == "scale")
+            continue;
         if (test::readFile(path).find("shared/data") != std::string::npos) continue;
         scenes.push_back(path);
     }
