@@ -10,6 +10,7 @@ namespace strahl {
 
 extern const MeshFormat kObjFormat;   // obj_loader.cpp
 extern const MeshFormat kPlyFormat;   // ply_loader.cpp
+extern const MeshFormat kGzipPlyFormat;  // ply_loader.cpp
 extern const MeshFormat kGltfFormat;  // gltf_loader.cpp
 extern const MeshFormat kSerializedFormat;  // serialized_loader.cpp
 
@@ -18,6 +19,7 @@ namespace {
 const MeshFormat* const kFormats[] = {
     &kObjFormat,
     &kPlyFormat,
+    &kGzipPlyFormat,
     &kGltfFormat,
     &kSerializedFormat,
 };
@@ -26,12 +28,12 @@ const MeshFormat* const kFormats[] = {
 
 std::span<const MeshFormat* const> meshFormats() { return kFormats; }
 
+// By how the file name ends, so that double extensions (".ply.gz") work.
 const MeshFormat* findMeshFormat(const std::filesystem::path& file) {
-    const std::string extension = meshio::toLower(file.extension().string());
+    const std::string name = meshio::toLower(file.filename().string());
     for (const MeshFormat* format : kFormats)
-        if (std::find(format->extensions.begin(), format->extensions.end(), extension) !=
-            format->extensions.end())
-            return format;
+        for (std::string_view extension : format->extensions)
+            if (name.size() > extension.size() && name.ends_with(extension)) return format;
     return nullptr;
 }
 

@@ -12,10 +12,13 @@
 //     (ply_sequential.h), which names the first bad value's place.
 // Both paths give the same mesh, bit for bit, and the same errors.
 
+#include <zlib.h>
+
 #include <bit>
 #include <cstring>
 
 #include "loader_tuning.h"
+#include "inflate.h"
 #include "mapped_file.h"
 #include "ply_header.h"
 #include "ply_parallel.h"
@@ -129,8 +132,40 @@ LoadedMesh loadPlyFromMemory(std::string_view data, const fs::path& file) {
 
 namespace {
 constexpr std::string_view kPlyExtensions[] = {".ply"};
+
+// gzip-compressed PLY (.ply.gz, as pbrt-v4's scenes ship some meshes):
+// inflated into memory, then read as any PLY.
+LoadedMesh loadGzipPlyFromMemory(std::string_view data, const fs::path& file) {
+    const std::string ply = meshio::inflateAll(data, file.string(), meshio::Compression::Gzip);
+    return meshio::decodePly(ply, file, true);
+}
+LoadedMesh loadGzipPly(const fs::path& file) {
+    const meshio::MappedFile mapping(file);
+    return loadGzipPlyFromMemory(mapping.bytes(), file);
+}
+constexpr std::string_view kGzipPlyExtensions[] = {".ply.gz"};
 }  // namespace
 
+bool plyFileHasVertexNormals(const fs::path& file) {
+    // gzread reads plain files as they are and .gz files inflated.
+    gzFile in = gzopen(file.string().c_str(), "rb");
+    if (!in) return false;
+    char line[1024];
+    bool inVertex = false, normals = false;
+    // A header of more than 1000 lines is no PLY header strahl reads.
+    for (int lines = 0; lines < 1000 && gzgets(in, line, sizeof line); ++lines) {
+        std::string_view text(line);
+        while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.remove_suffix(1);
+        if (text.starts_with("end_header")) break;
+        if (text.starts_with("element ")) inVertex = text.starts_with("element vertex ");
+        if (inVertex && text.starts_with("property ") && text.ends_with(" nx")) normals = true;
+    }
+    gzclose(in);
+    return normals;
+}
+
 extern const MeshFormat kPlyFormat{"PLY", kPlyExtensions, &loadPly, &loadPlyFromMemory};
+extern const MeshFormat kGzipPlyFormat{"gzip-compressed PLY", kGzipPlyExtensions, &loadGzipPly,
+                                       &loadGzipPlyFromMemory};
 
 }  // namespace strahl

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "inflate.h"
 #include "mapped_file.h"
 #include "strahl/core/error.h"
 #include "strahl/meshio/mesh_format.h"
@@ -35,29 +36,6 @@ T readLittle(std::string_view bytes, size_t offset) {
     T value;
     std::memcpy(&value, bytes.data() + offset, sizeof(T));
     return value;
-}
-
-// The zlib stream starting at `data`, inflated (until its end or the input's).
-std::string inflateAll(std::string_view data, const std::string& name) {
-    z_stream z{};
-    if (inflateInit(&z) != Z_OK) fail(name, ": cannot start zlib");
-    z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
-    z.avail_in = static_cast<uInt>(std::min<size_t>(data.size(), std::numeric_limits<uInt>::max()));
-    std::string out;
-    int status = Z_OK;
-    while (status == Z_OK) {
-        const size_t done = out.size();
-        out.resize(done + (size_t(1) << 20));
-        z.next_out = reinterpret_cast<Bytef*>(out.data() + done);
-        z.avail_out = uInt(1) << 20;
-        status = inflate(&z, Z_NO_FLUSH);
-        out.resize(out.size() - z.avail_out);
-        if (status == Z_BUF_ERROR && z.avail_in == 0) break;  // the input ended first
-    }
-    inflateEnd(&z);
-    if (status != Z_STREAM_END && status != Z_BUF_ERROR)
-        fail(name, ": the compressed mesh data is corrupt (zlib: ", z.msg ? z.msg : "error", ")");
-    return out;
 }
 
 // Reads a mesh's uncompressed stream front to back, failing on truncation.
@@ -130,7 +108,7 @@ LoadedMesh loadSerializedFromMemory(std::string_view bytes, const fs::path& file
     const size_t offset = meshOffset(bytes, version, shapeIndex, name);
     if (readLittle<uint16_t>(bytes, offset) != kFormat || readLittle<uint16_t>(bytes, offset + 2) != version)
         fail(name, ": mesh ", shapeIndex, " has no valid header at byte ", offset);
-    const std::string data = inflateAll(bytes.substr(offset + 4), name);
+    const std::string data = meshio::inflateAll(bytes.substr(offset + 4), name, meshio::Compression::Zlib);
 
     Reader in(data, name);
     const uint32_t flags = in.value<uint32_t>("flags");

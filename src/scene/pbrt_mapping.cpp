@@ -859,11 +859,10 @@ private:
             const Parameter* f = typed(e, "filename", {"string"});
             if (!f) unsupported(e, "needs \"string filename\"");
             const std::string path = file(*f);
-            if (path.size() > 3 && path.substr(path.size() - 3) == ".gz") bad(*f, "compressed PLY files (.ply.gz) are not supported yet");
             if (e.params.find("displacement")) bad(*e.params.find("displacement"), "displacement is not supported");
             param(e, "edgelength");
             shape = {{"type", "mesh"}, {"file", path}};
-            hasNormals = plyHasNormals(path);
+            hasNormals = plyFileHasVertexNormals(path);
         } else if (e.type == "sphere") {
             const double radius = number(e, "radius", 1.0);
             if (!(radius > 0.0)) unsupported(e, "radius must be positive");
@@ -964,21 +963,6 @@ private:
         if (const Parameter* S = e.params.find("S")) bad(*S, "per-vertex tangents are not supported");
         param(e, "faceIndices");  // ptex face ids: no ptex textures here
         return mesh;
-    }
-
-    // Whether a PLY file's vertices carry normals (nx), from its header.
-    static bool plyHasNormals(const std::string& path) {
-        std::ifstream in(path, std::ios::binary);
-        std::string line;
-        bool inVertex = false;
-        for (int lines = 0; lines < 1000 && std::getline(in, line); ++lines) {
-            if (line.rfind("end_header", 0) == 0) break;
-            if (line.rfind("element ", 0) == 0) inVertex = line.rfind("element vertex", 0) == 0;
-            if (inVertex && line.rfind("property", 0) == 0 && line.size() > 3 &&
-                line.substr(line.find_last_of(' ') + 1) == "nx")
-                return true;
-        }
-        return false;
     }
 
     const json& materialNamed(const std::string& name) const {

@@ -49,10 +49,10 @@ TEST(MeshFormats, EachExtensionBelongsToOneFormatAndTheListsSayThemAll) {
             EXPECT_EQ(findMeshFormat("model" + upper), format) << upper;
         }
     }
-    EXPECT_EQ(extensions, 5u);
+    EXPECT_EQ(extensions, 6u);
     EXPECT_EQ(findMeshFormat("model.stl"), nullptr);
-    EXPECT_EQ(meshExtensionList(", ", " or "), ".obj, .ply, .gltf, .glb or .serialized");
-    EXPECT_EQ(meshExtensionList(", ", ", "), ".obj, .ply, .gltf, .glb, .serialized");
+    EXPECT_EQ(meshExtensionList(", ", " or "), ".obj, .ply, .ply.gz, .gltf, .glb or .serialized");
+    EXPECT_EQ(meshExtensionList(", ", ", "), ".obj, .ply, .ply.gz, .gltf, .glb, .serialized");
 }
 
 TEST(LoadMeshFile, UnknownExtensionNamesTheFile) {
@@ -60,7 +60,7 @@ TEST(LoadMeshFile, UnknownExtensionNamesTheFile) {
     EXPECT_THAT(errorOf(dir / "model.stl"),
                 HasSubstr((dir / "model.stl").string() + ": unknown mesh file extension '.stl'"));
     EXPECT_THAT(errorOf(dir / "model"), HasSubstr("model: unknown mesh file extension ''"));
-    EXPECT_THAT(errorOf(dir / "model.stl"), HasSubstr("(expected .obj, .ply, .gltf, .glb or .serialized)"));
+    EXPECT_THAT(errorOf(dir / "model.stl"), HasSubstr("(expected .obj, .ply, .ply.gz, .gltf, .glb or .serialized)"));
 }
 
 TEST(LoadMeshFile, MissingOrUnreadableFileGivesTheSystemReason) {

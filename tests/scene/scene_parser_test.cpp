@@ -355,7 +355,7 @@ TEST(SceneParser, MeshFileMustBeARegularObjOrPlyFile) {
         return std::string("no error");
     };
     EXPECT_EQ(errorFor("mesh.stl"), scene.string() + ": /shapes/0/file: 'mesh.stl' is not a " +
-                                        "supported mesh format (extensions: .obj, .ply, .gltf, .glb, .serialized)");
+                                        "supported mesh format (extensions: .obj, .ply, .ply.gz, .gltf, .glb, .serialized)");
     EXPECT_EQ(errorFor("folder.obj"), scene.string() +
                                           ": /shapes/0/file: 'folder.obj' is not a regular file " +
                                           "(looked at " + (dir / "folder.obj").string() + ")");

@@ -44,8 +44,12 @@ struct EnvironmentLight {
     Mat3 worldToEnvironment{1.0f};  // rotation (orthonormal) into map space
     Color scale{1.0f};              // multiplies the map
     RowLayout rows = RowLayout::Centred;
+    // equal_area: from parse() to load(), worldToEnvironment holds the whole
+    // map from world directions to the image's (map_transform after the
+    // rotation), which load() bakes into the resampled lat-long map before
+    // setting it to the identity (a field of its own would make every Light,
+    // one per emissive triangle, larger).
     EnvironmentMapping mapping = EnvironmentMapping::LatLong;
-    Mat3 mapFromWorld{1.0f};  // equal_area: world directions to the image's (map_transform)
 
     template <typename Reader>
     static EnvironmentLight parse(const Reader& r) {
@@ -60,13 +64,14 @@ struct EnvironmentLight {
         if (auto mapping = v.find("mapping"))
             l.mapping = mapping->oneOf({"latlong", "equal_area"}) == "equal_area" ? EnvironmentMapping::EqualArea
                                                                                   : EnvironmentMapping::LatLong;
+        Mat3 mapTransform(1.0f);
         if (auto m = v.find("map_transform")) {
             if (l.mapping != EnvironmentMapping::EqualArea) m->fail("applies to \"mapping\": \"equal_area\" only");
             if (!m->raw().is_array() || m->raw().size() != 9)
                 m->fail("expected 9 numbers (a 3 x 3 matrix, row by row)");
             for (int row = 0; row < 3; ++row)
-                for (int col = 0; col < 3; ++col) l.mapFromWorld[col][row] = m->at(size_t(3 * row + col)).number();
-            const float det = glm::determinant(l.mapFromWorld);
+                for (int col = 0; col < 3; ++col) mapTransform[col][row] = m->at(size_t(3 * row + col)).number();
+            const float det = glm::determinant(mapTransform);
             if (!(std::abs(det) > 1e-12f) || !std::isfinite(det)) m->fail("the matrix is singular");
         }
         if (l.mapping == EnvironmentMapping::EqualArea && v.find("rows"))
@@ -76,15 +81,20 @@ struct EnvironmentLight {
         // World to map space: the inverse of the map's rotation about +y.
         l.worldToEnvironment =
             Mat3(glm::rotate(Mat4(1.0f), glm::radians(-rotation), Vec3(0.0f, 1.0f, 0.0f)));
+        if (l.mapping == EnvironmentMapping::EqualArea) l.worldToEnvironment = mapTransform * l.worldToEnvironment;
         return l;
     }
     // loader.environmentMap(file, rows) returns the lat-long map read from the
     // file, loader.equalAreaMap(file, mapFromWorld) one resampled from an
-    // equal-area square.
+    // equal-area square (in world space: the map then needs no rotation).
     template <typename Loader>
     void load(const Loader& loader) {
-        environment = mapping == EnvironmentMapping::EqualArea ? loader.equalAreaMap(file, mapFromWorld)
-                                                               : loader.environmentMap(file, rows);
+        if (mapping == EnvironmentMapping::EqualArea) {
+            environment = loader.equalAreaMap(file, worldToEnvironment);
+            worldToEnvironment = Mat3(1.0f);
+        } else {
+            environment = loader.environmentMap(file, rows);
+        }
     }
     void validate(size_t index) const {
         light_detail::checkColor(index, "scale", scale);

@@ -82,6 +82,11 @@ namespace meshio {
 void reportWarning(const std::string& message);
 }  // namespace meshio
 
+// Whether a PLY file (or a .ply.gz) declares vertex normals (an "nx"
+// property of its vertex element), from its header alone; false for a file
+// that cannot be read or is no PLY (loading it reports that).
+bool plyFileHasVertexNormals(const std::filesystem::path& file);
+
 // Dispatches on the extension (.obj, .ply, .gltf, .glb; case-insensitive).
 LoadedMesh loadMeshFile(const std::filesystem::path& file);
 
