@@ -896,9 +896,20 @@ private:
             shape = emitter || s.reverseOrientation
                         ? json{{"type", "parametric"}, {"surface", surface}, {"tessellation", {{"segments", {256, 1}}}}}
                         : json{{"type", "parametric"}, {"mode", "direct"}, {"surface", surface}};
-        } else if (e.type == "bilinearmesh" || e.type == "loopsubdiv" || e.type == "curve") {
-            unsupported(e, "this shape is not supported yet (bilinear patches, subdivision surfaces and curves "
-                           "are issue 22)");
+        } else if (e.type == "loopsubdiv") {
+            // The control mesh, subdivided by strahl as pbrt does (levels 3 by default).
+            const Parameter* idx = typed(e, "indices", {"integer"});
+            if (!idx) unsupported(e, "needs \"integer indices\"");
+            for (const char* other : {"N", "uv", "S"})
+                if (const Parameter* p = e.params.find(other)) bad(*p, "not a parameter of loopsubdiv");
+            shape = triangleMesh(e, hasNormals);
+            hasNormals = false;  // the subdivided mesh's normals follow its winding, as pbrt's do
+            const int levels = integer(e, "levels", 3);
+            if (levels < 0 || levels > 8) unsupported(e, "levels must lie in 0 ... 8");
+            param(e, "scheme");  // pbrt reads it and always subdivides by Loop's rules
+            shape["subdivision"] = {{"scheme", "loop"}, {"levels", levels}};
+        } else if (e.type == "bilinearmesh" || e.type == "curve") {
+            unsupported(e, "this shape is not supported yet (bilinear patches and curves are issue 22)");
         } else {
             unsupported(e, "this shape is not supported (trianglemesh, plymesh, sphere, disk, cylinder)");
         }

@@ -26,6 +26,7 @@
 #include "scene_json.h"
 #include "transform_parser.h"
 #include "strahl/core/error.h"
+#include "strahl/geometry/loop_subdivision.h"
 #include "strahl/meshio/mesh_format.h"
 #include "strahl/scene/scene_desc.h"
 
@@ -200,7 +201,7 @@ ShapeDesc parseShape(const JsonValue& v, const ShapeContext& context) {
         s.name = s.where;
     } else {
         v.requireKeys({"type", "name", "file", "positions", "indices", "normals", "uvs",
-                       "material", "transform", "flip_normals", "shape_index"});
+                       "material", "transform", "flip_normals", "shape_index", "subdivision"});
         parseMeshSource(v, folder, label, s);
         if (auto flip = v.find("flip_normals")) s.flipNormals = flip->boolean();
         if (auto index = v.find("shape_index")) {
@@ -234,7 +235,7 @@ void parseMeshSource(const JsonValue& v, const fs::path& folder, const std::stri
     const auto file = v.find("file");
     if (file && v.has("positions")) v.fail("'file' and 'positions' are exclusive: give one");
     if (file) {
-        for (std::string_view key : {"indices", "uvs"}) {
+        for (std::string_view key : {"indices", "uvs", "subdivision"}) {
             if (auto extra = v.find(key))
                 extra->fail("only for inline meshes (with 'positions'), not with 'file'");
         }
@@ -253,6 +254,17 @@ void parseMeshSource(const JsonValue& v, const fs::path& folder, const std::stri
     } else if (v.has("positions")) {
         s.inlineMesh = parseInlineMesh(v, label);
         s.name = s.where;
+        if (auto subdivision = v.find("subdivision")) {
+            // {"scheme": "loop", "levels": n}: the control mesh subdivided
+            // (geometry/loop_subdivision.h), with its own smooth normals.
+            subdivision->requireKeys({"scheme", "levels"});
+            subdivision->get("scheme").oneOf({"loop"});
+            int levels = 3;
+            if (auto l = subdivision->find("levels")) levels = static_cast<int>(l->integer(0, kMaxLoopLevels));
+            for (std::string_view key : {"normals", "uvs"})
+                if (auto extra = v.find(key)) extra->fail("not with 'subdivision' (the subdivided mesh has its own)");
+            s.inlineMesh = loopSubdivide(s.inlineMesh, levels, concat(label, ": ", subdivision->pointer()));
+        }
     } else {
         v.fail("needs 'file' (a mesh file) or 'positions' (an inline mesh)");
     }

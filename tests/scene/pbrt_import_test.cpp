@@ -329,6 +329,33 @@ TEST(PbrtImport, AnImageInfiniteLightIsAnEqualAreaMapInTheLightsFrame) {
                 HasSubstr("give either L or filename"));
 }
 
+TEST(PbrtImport, LoopsubdivIsAControlMeshStrahlSubdivides) {
+    const std::string octahedron =
+        "\"point3 P\" [1 0 0 -1 0 0 0 1 0 0 -1 0 0 0 1 0 0 -1] "
+        "\"integer indices\" [0 2 4 2 1 4 1 3 4 3 0 4 2 0 5 1 2 5 3 1 5 0 3 5]\n";
+    const json doc = document(scene("Shape \"loopsubdiv\" " + octahedron));
+    EXPECT_EQ(doc["shapes"][0]["subdivision"], (json{{"scheme", "loop"}, {"levels", 3}}));
+    const SceneDesc d = SceneDocument::fromText(scene("Shape \"loopsubdiv\" \"integer levels\" 2 " + octahedron),
+                                                "scene.pbrt")
+                            .parse();
+    ASSERT_EQ(d.shapes.size(), 1u);
+    EXPECT_EQ(d.shapes[0].inlineMesh.triangleCount(), 8u * 16u);
+    EXPECT_EQ(d.shapes[0].inlineMesh.normals.size(), d.shapes[0].inlineMesh.vertexCount());
+    // The same key in a strahl scene, and its errors.
+    const auto jsonError = [](const std::string& extra) {
+        return test::errorMessage([&] {
+            SceneDocument::fromText(R"({"shapes": [{"type": "mesh", "positions": [[0,0,0],[1,0,0],[0,1,0]],
+                "indices": [0, 1, 2], "subdivision": {"scheme": "loop")" + extra + "}]}",
+                                    "scene.json")
+                .parse();
+        });
+    };
+    EXPECT_THAT(jsonError(R"(, "levels": 9})"), HasSubstr("/shapes/0/subdivision/levels: must be between 0 and 8"));
+    EXPECT_THAT(jsonError(R"(}, "normals": [[0,0,1],[0,0,1],[0,0,1]])"),
+                HasSubstr("/shapes/0/normals: not with 'subdivision'"));
+    EXPECT_THAT(jsonError(R"(, "scheme2": 1})"), HasSubstr("unknown key 'scheme2'"));
+}
+
 TEST(PbrtImport, ParameterListsTakeBareOrBracketedValuesAndCommentsAnywhere) {
     const json doc = document(scene("# a comment\nShape \"sphere\" # another\n  \"float radius\" [ 2 ]\n"
                                     "Shape \"sphere\" \"float radius\" 3 \"float zmin\" -3\n"
