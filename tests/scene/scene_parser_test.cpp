@@ -431,7 +431,7 @@ TEST(SceneParser, UnknownKeysNameTheObjectAndTheAllowedKeys) {
               "roughness, roughness_u, roughness_v, distribution, masking)");
     EXPECT_EQ(errorOf(triangleWith(R"("faces": [0, 1, 2])")),
               "scene.json: /shapes/0: unknown key 'faces' (allowed: type, name, file, positions, "
-              "indices, normals, uvs, material, transform, flip_normals, shape_index)");
+              "indices, normals, uvs, material, transform, flip_normals, shape_index, subdivision)");
     EXPECT_EQ(
         errorWith(R"("lights": [{"type": "point", "position": [0,0,0], "direction": [1,0,0]}])"),
         "scene.json: /lights/0: unknown key 'direction' (allowed: type, position, intensity)");
