@@ -66,6 +66,12 @@ Bsdf Bsdf::diffuse(const Color& reflectance) {
     return Bsdf(LambertModel{reflectance}, reflectance);
 }
 
+Bsdf Bsdf::diffuseTransmission(const Color& reflectance, const Color& transmittance) {
+    requireColor("diffuse transmission", "reflectance", reflectance);
+    requireColor("diffuse transmission", "transmittance", transmittance);
+    return Bsdf(DiffuseTransmissionModel{reflectance, transmittance}, reflectance + transmittance);
+}
+
 Bsdf Bsdf::phong(const Color& kd, const Color& ks, float exponent) {
     requireColor("phong", "kd", kd);
     requireColor("phong", "ks", ks);

@@ -44,6 +44,40 @@ std::optional<BsdfSample> LambertModel::sample(const Vec3& wo, float, const Vec2
     return s;
 }
 
+// ---- Diffuse transmission ------------------------------------------------------
+
+float DiffuseTransmissionModel::reflectProbability() const {
+    const float r = mean(reflectance), t = mean(transmittance);
+    return r + t > 0.0f ? r / (r + t) : 0.5f;
+}
+
+Color DiffuseTransmissionModel::f(const Vec3& wo, const Vec3& wi) const {
+    if (wo.z == 0.0f || wi.z == 0.0f) return Color(0.0f);
+    return (wo.z > 0.0f) == (wi.z > 0.0f) ? reflectance * kInvPi : transmittance * kInvPi;
+}
+
+float DiffuseTransmissionModel::pdf(const Vec3& wo, const Vec3& wi) const {
+    if (wo.z == 0.0f) return 0.0f;
+    const float pr = reflectProbability();
+    const bool sameSide = (wo.z > 0.0f) == (wi.z > 0.0f);
+    return (sameSide ? pr : 1.0f - pr) * cosineHemispherePdf(std::abs(wi.z));
+}
+
+std::optional<BsdfSample> DiffuseTransmissionModel::sample(const Vec3& wo, float uLobe, const Vec2& u) const {
+    if (wo.z == 0.0f || maxComponent(reflectance + transmittance) <= 0.0f) return std::nullopt;
+    const float pr = reflectProbability();
+    const bool reflect = uLobe < pr;
+    BsdfSample s;
+    s.wi = sampleCosineHemisphere(u);
+    // The cosine lobe on wo's side to reflect, on the other to transmit.
+    if ((wo.z < 0.0f) == reflect) s.wi.z = -s.wi.z;
+    s.pdf = (reflect ? pr : 1.0f - pr) * cosineHemispherePdf(std::abs(s.wi.z));
+    if (!(s.pdf > 0.0f)) return std::nullopt;
+    s.f = (reflect ? reflectance : transmittance) * kInvPi;
+    s.transmission = !reflect;
+    return s;
+}
+
 // ---- Phong and Blinn-Phong -----------------------------------------------------
 
 float PhongModel::specularProbability() const {

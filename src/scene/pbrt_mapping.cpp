@@ -723,6 +723,12 @@ private:
                 microfacets(m, out, 0.0);
                 if (out.contains("roughness_u")) unsupported(m, "an anisotropic rough dielectric is not supported");
             }
+        } else if (m.type == "diffusetransmission") {
+            out = {{"type", "diffuse_transmission"}};
+            const double scale = number(m, "scale", 1.0);
+            if (!(scale >= 0.0)) unsupported(m, "scale must not be negative");
+            out["color"] = scaled(colorInput(m, "reflectance").value_or(json(0.25)), scale, m);
+            out["transmittance"] = scaled(colorInput(m, "transmittance").value_or(json(0.25)), scale, m);
         } else if (m.type == "mix") {
             const Parameter* names = typed(m, "materials", {"string"});
             if (!names || names->strings.size() != 2) unsupported(m, "needs \"string materials\" with two names");
@@ -745,7 +751,7 @@ private:
             out = {{"type", "diffuse"}, {"opacity", 0}};
         } else {
             unsupported(m, "this material is not supported (diffuse, coateddiffuse, conductor, dielectric, "
-                           "thindielectric, mix, interface)");
+                           "thindielectric, diffusetransmission, mix, interface)");
         }
         if (const Parameter* n = param(m, "normalmap")) {
             if (n->type != "string") bad(*n, "expected a file name");

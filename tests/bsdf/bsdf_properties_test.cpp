@@ -69,6 +69,21 @@ TEST(BsdfProperties, ReflectionIsReciprocal) {
     }
 }
 
+TEST(BsdfProperties, DiffuseTransmissionIsReciprocalOnBothSidesAndThrough) {
+    const Bsdf leaf = Bsdf::diffuseTransmission(Color(0.5f, 0.4f, 0.3f), Color(0.1f, 0.2f, 0.3f));
+    EXPECT_FALSE(leaf.isOpaque());
+    Pcg32 rng(8, 8);
+    for (int i = 0; i < 500; ++i) {
+        const Vec3 a = sampleHemisphere(rng);
+        Vec3 b = sampleHemisphere(rng);
+        if (i % 2) b.z = -b.z;
+        EXPECT_EQ(leaf.f(a, b), leaf.f(b, a));
+        EXPECT_EQ(leaf.f(-a, -b), leaf.f(a, b));  // the same from the back
+        const Color expected = (i % 2 ? Color(0.1f, 0.2f, 0.3f) : Color(0.5f, 0.4f, 0.3f)) * kInvPi;
+        EXPECT_EQ(leaf.f(a, b), expected);
+    }
+}
+
 TEST(BsdfProperties, DielectricObeysGeneralisedReciprocity) {
     // Reflection is symmetric; radiance-transport transmission satisfies
     // f(wo, wi) / n_o^2 = f(wi, wo) / n_i^2 (Veach 1997, 5.2).

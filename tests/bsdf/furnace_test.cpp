@@ -45,6 +45,8 @@ TEST(WhiteFurnace, LosslessBsdfsReflectEverything) {
         {"smooth plastic white eta 2", Bsdf::plastic(Color(1.0f), 2.0f, 0.0f)},
         {"smooth metallic-roughness white", Bsdf::metallicRoughness(Color(1.0f), 0.0f, 0.0f)},
         {"rough metallic-roughness white", Bsdf::metallicRoughness(Color(1.0f), 0.0f, 0.25f)},
+        // Last, so the cases above keep their seeds.
+        {"diffuse transmission R + T = 1", Bsdf::diffuseTransmission(Color(0.7f, 0.5f, 0.2f), Color(0.3f, 0.5f, 0.8f))},
     };
     uint64_t seed = 1;
     for (const Case& c : cases) {
@@ -101,6 +103,7 @@ std::vector<Case> everyModel() {
         }
     }
     cases.push_back({"anisotropic F=1", Bsdf::conductor(Color(0.0f), Color(1.0f), 0.05f, 0.6f)});
+    cases.push_back({"diffuse transmission", Bsdf::diffuseTransmission(Color(0.6f), Color(0.4f))});  // last: the others keep their seeds
     return cases;
 }
 

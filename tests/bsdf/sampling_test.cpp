@@ -47,6 +47,7 @@ std::vector<Case> nonDeltaModels() {
     const MetalPreset gold = *findMetalPreset("gold");
     return {
         {"lambert", Bsdf::diffuse(Color(0.8f, 0.5f, 0.2f))},
+        {"diffuse transmission", Bsdf::diffuseTransmission(Color(0.5f, 0.3f, 0.1f), Color(0.2f, 0.4f, 0.6f))},
         {"phong", Bsdf::phong(Color(0.3f), Color(0.6f), 20.0f)},
         {"blinn-phong", Bsdf::blinnPhong(Color(0.3f), Color(0.6f), 30.0f)},
         {"gold alpha 0.3", Bsdf::conductor(gold.eta, gold.k, 0.3f, 0.3f)},

@@ -133,9 +133,10 @@ TEST(PbrtImport, MaterialsMapOntoStrahlsModels) {
         "MakeNamedMaterial \"a\" \"string type\" \"diffuse\" \"rgb reflectance\" [1 0 0]\n"
         "MakeNamedMaterial \"b\" \"string type\" \"thindielectric\"\n"
         "Material \"mix\" \"string materials\" [\"a\" \"b\"] \"float amount\" 0.25\n" + kTriangle +
-        "Material \"conductor\" \"rgb reflectance\" [0.5 0.5 0.5]\n" + kTriangle));
+        "Material \"conductor\" \"rgb reflectance\" [0.5 0.5 0.5]\n" + kTriangle +
+        "Material \"diffusetransmission\" \"rgb transmittance\" [0.5 0.5 0.5] \"float scale\" 0.5\n" + kTriangle));
     const json& m = doc["materials"];
-    ASSERT_EQ(m.size(), 6u);
+    ASSERT_EQ(m.size(), 7u);
     // Copper by default; GGX alpha = sqrt(roughness) when remapped, strahl's
     // roughness = sqrt(alpha).
     EXPECT_EQ(m[0]["type"], "conductor");
@@ -153,6 +154,9 @@ TEST(PbrtImport, MaterialsMapOntoStrahlsModels) {
     // reflectance r: eta 1, k = 2 sqrt(r) / sqrt(1 - r) = 2 for r = 1/2.
     EXPECT_EQ(m[5]["eta"], 1.0);
     EXPECT_NEAR(m[5]["k"].get<double>(), 2.0, 1e-12);
+    EXPECT_EQ(m[6]["type"], "diffuse_transmission");
+    EXPECT_EQ(m[6]["color"], 0.125);
+    EXPECT_EQ(m[6]["transmittance"], 0.25);
     // The whole document is a valid strahl scene.
     EXPECT_NO_THROW(SceneDocument::fromText(scene(kTriangle), "scene.pbrt").parse());
 }

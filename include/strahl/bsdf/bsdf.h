@@ -46,6 +46,9 @@ public:
     static Bsdf black();
     // Lambert: f = R / pi.
     static Bsdf diffuse(const Color& reflectance);
+    // Lambertian reflection R / pi and transmission T / pi (a thin leaf);
+    // R + T <= 1 per channel conserves energy.
+    static Bsdf diffuseTransmission(const Color& reflectance, const Color& transmittance);
     // Energy-conserving modified Phong (Lafortune & Willems 1994) and
     // normalised Blinn-Phong: kd / pi + ks-weighted normalised lobe; kd + ks <= 1
     // per channel keeps the albedo at or below 1.

@@ -45,6 +45,21 @@ struct LambertModel {
     std::optional<BsdfSample> sample(const Vec3& wo, float uLobe, const Vec2& u) const;
 };
 
+// Lambertian reflection and transmission (pbrt's diffusetransmission, the
+// thin leaves of foliage): f = R / pi with wo and wi on one side, T / pi on
+// opposite sides. Sampling picks the side by the means of R and T, then
+// a cosine-weighted direction there. Reciprocal; albedo R + T.
+struct DiffuseTransmissionModel {
+    Color reflectance, transmittance;
+
+    static constexpr bool kOpaque = false;
+    bool specular() const { return false; }
+    float reflectProbability() const;
+    Color f(const Vec3& wo, const Vec3& wi) const;
+    float pdf(const Vec3& wo, const Vec3& wi) const;
+    std::optional<BsdfSample> sample(const Vec3& wo, float uLobe, const Vec2& u) const;
+};
+
 // kd / pi plus a normalised cos^n lobe: around the mirror direction (modified
 // Phong) or of the half vector (Blinn-Phong, Ashikhmin-Shirley normalisation).
 struct PhongModel {
@@ -182,7 +197,8 @@ namespace strahl {
 
 // The closed set of scattering models a Bsdf can be.
 using BsdfModel =
-    std::variant<bsdf_models::BlackModel, bsdf_models::LambertModel, bsdf_models::PhongModel,
+    std::variant<bsdf_models::BlackModel, bsdf_models::LambertModel, bsdf_models::DiffuseTransmissionModel,
+                 bsdf_models::PhongModel,
                  bsdf_models::ConductorModel, bsdf_models::DielectricModel,
                  bsdf_models::ThinDielectricModel, bsdf_models::PlasticModel,
                  bsdf_models::MetallicRoughnessModel, bsdf_models::PrincipledModel>;

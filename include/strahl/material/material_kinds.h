@@ -13,6 +13,7 @@
 #include "strahl/material/conductor.h"
 #include "strahl/material/dielectric.h"
 #include "strahl/material/diffuse.h"
+#include "strahl/material/diffuse_transmission.h"
 #include "strahl/material/emissive.h"
 #include "strahl/material/metallic_roughness.h"
 #include "strahl/material/phong.h"
@@ -24,7 +25,7 @@ namespace strahl {
 
 using MaterialKind =
     std::variant<DiffuseMaterial, PhongMaterial, BlinnMaterial, ConductorMaterial,
-                 DielectricMaterial, ThinDielectricMaterial, PlasticMaterial,
+                 DielectricMaterial, ThinDielectricMaterial, DiffuseTransmissionMaterial, PlasticMaterial,
                  MetallicRoughnessMaterial, PrincipledMaterial, BlendMaterial, EmissiveMaterial>;
 
 // A material kind held by pointer (BlendMaterial's parts).
