@@ -839,12 +839,20 @@ private:
         const Parameter* idx = e.params.find("indices");
         if (!P) return 0.0;
         std::vector<uint32_t> indices;
-        if (idx) for (double i : idx->numbers) indices.push_back(static_cast<uint32_t>(i));
-        else indices = {0, 1, 2};
+        const size_t points = P->numbers.size() / 3;
+        if (idx) {
+            for (double i : idx->numbers) {
+                if (!(i >= 0.0 && i < static_cast<double>(points)))
+                    bad(*idx, concat("index ", i, " is out of range (", points, " points)"));
+                indices.push_back(static_cast<uint32_t>(i));
+            }
+        } else {
+            indices = {0, 1, 2};
+        }
         double area = 0.0;
         for (size_t i = 0; i + 2 < indices.size(); i += 3) {
             auto at = [&](uint32_t k) {
-                if (3 * size_t(k) + 2 >= P->numbers.size()) bad(*idx, "an index is out of range");
+                if (3 * size_t(k) + 2 >= P->numbers.size()) unsupported(e, "P has fewer points than the indices use");
                 return transformPoint(shape.toWorld, {P->numbers[3 * k], P->numbers[3 * k + 1], P->numbers[3 * k + 2]});
             };
             area += 0.5 * glm::length(glm::cross(at(indices[i + 1]) - at(indices[i]), at(indices[i + 2]) - at(indices[i])));
@@ -948,8 +956,7 @@ private:
                 bad(*idx, "expected three indices per triangle");
             for (double i : idx->numbers) {
                 if (i < 0 || i >= static_cast<double>(n))
-                    bad(*idx, "index " + std::to_string(static_cast<long long>(i)) + " is out of range (" +
-                                  std::to_string(n) + " points)");
+                    bad(*idx, concat("index ", i, " is out of range (", n, " points)"));
                 indices.push_back(static_cast<uint32_t>(i));
             }
         } else {

@@ -126,6 +126,14 @@ TEST(FuzzRegressionInputs, ASerializedOffsetPastTheFileIsAnError) {
     EXPECT_TRUE(test::contains(replay(targetNamed("fuzz_serialized"), input), "is outside the file"));
 }
 
+// A pbrt index far beyond any integer type was converted to one to be named
+// in its error message (undefined behaviour); it is named as read.
+TEST(FuzzRegressionInputs, APbrtIndexBeyondEveryIntegerTypeIsAnError) {
+    const fs::path input = test::sourceDir() / "tests/data/fuzz/fuzz_pbrt/index_beyond_long_long.pbrt";
+    EXPECT_TRUE(test::contains(replay(targetNamed("fuzz_pbrt"), input),
+                               "\"integer indices\": index 3.33333e+29 is out of range (3 points)"));
+}
+
 INSTANTIATE_TEST_SUITE_P(Targets, FuzzRegression, testing::ValuesIn(kTargets),
                          [](const testing::TestParamInfo<FuzzTarget>& target) {
                              return std::string(target.param.name);
