@@ -190,7 +190,7 @@ private:
     // exporters from right-handed programs write), when nothing.
     glm::dmat4 mirror_{1.0};
 
-    std::string label() const { return s_.camera ? s_.camera->place.file : std::string("scene"); }
+    const std::string& label() const { return s_.label; }
 
     std::string file(const Parameter& p) const {
         if (p.strings.size() != 1) bad(p, "expected one file name");
@@ -199,7 +199,10 @@ private:
         std::error_code ec;
         if (!fs::is_regular_file(path, ec))
             bad(p, "no such file '" + p.strings[0] + "' (looked at " + path.string() + ")");
-        return path.string();
+        // pbrt resolves relative names against the main file's folder, as the
+        // strahl document does: kept as written, `strahl convert` rewrites
+        // them for where it writes.
+        return p.strings[0];
     }
 
     // --- film, camera, sampler, integrator ------------------------------

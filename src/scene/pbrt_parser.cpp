@@ -191,6 +191,7 @@ public:
             fail(stack_.back().place.text(), ": AttributeBegin without a matching AttributeEnd");
         if (currentObject_) fail(currentObject_->place.text(), ": ObjectBegin without a matching ObjectEnd");
         if (!inWorld_) fail(label, ": the file has no WorldBegin");
+        scene_.label = label;
         auto resolve = [&](Shape& s) {
             if (s.materialName.empty()) return;
             const auto found = scene_.namedMaterials.find(s.materialName);

@@ -103,6 +103,7 @@ struct Scene {
     std::map<std::string, ObjectDefinition> objects;
     std::vector<Instance> instances;
     std::filesystem::path folder;  // of the main file: relative names resolve here
+    std::string label;             // how messages name the main file
 };
 
 // Throws strahl::Error "<file>:<line>: <what>" for a syntax error, an unknown
