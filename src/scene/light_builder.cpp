@@ -57,15 +57,17 @@ std::shared_ptr<const EnvironmentMap> loadEqualArea(const std::filesystem::path&
             return image.channels >= 3 ? Color(p[0], p[1], p[2]) : Color(p[0]);
         };
         const int width = 2 * n, height = n;
+        const float side = static_cast<float>(n);
         std::vector<Color> texels(size_t(width) * size_t(height));
         for (int y = 0; y < height; ++y)
             for (int x = 0; x < width; ++x) {
-                const Vec3 d = EnvironmentMap::direction(Vec2((x + 0.5f) / width, (y + 0.5f) / height));
+                const Vec3 d = EnvironmentMap::direction(Vec2((static_cast<float>(x) + 0.5f) / (2.0f * side),
+                                                              (static_cast<float>(y) + 0.5f) / side));
                 const Vec2 uv = equalAreaSphereToSquare(glm::normalize(mapFromWorld * d));
                 // Row 0 of the image is v = 0 (pbrt reads the square as stored).
-                const float fx = uv.x * n - 0.5f, fy = uv.y * n - 0.5f;
+                const float fx = uv.x * side - 0.5f, fy = uv.y * side - 0.5f;
                 const int x0 = static_cast<int>(std::floor(fx)), y0 = static_cast<int>(std::floor(fy));
-                const float tx = fx - x0, ty = fy - y0;
+                const float tx = fx - static_cast<float>(x0), ty = fy - static_cast<float>(y0);
                 texels[size_t(y) * size_t(width) + size_t(x)] =
                     (1 - tx) * (1 - ty) * texel(x0, y0) + tx * (1 - ty) * texel(x0 + 1, y0) +
                     (1 - tx) * ty * texel(x0, y0 + 1) + tx * ty * texel(x0 + 1, y0 + 1);

@@ -14,7 +14,7 @@ namespace {
 TEST(EqualArea, SquareToSphereAndBackIsTheIdentity) {
     for (int j = 0; j <= 20; ++j)
         for (int i = 0; i <= 20; ++i) {
-            const Vec2 p(i / 20.0f, j / 20.0f);
+            const Vec2 p(static_cast<float>(i) / 20.0f, static_cast<float>(j) / 20.0f);
             const Vec3 d = equalAreaSquareToSphere(p);
             EXPECT_NEAR(glm::length(d), 1.0f, 1e-6f);
             const Vec2 q = equalAreaSphereToSquare(d);

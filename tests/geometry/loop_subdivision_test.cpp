@@ -71,9 +71,14 @@ TEST(LoopSubdivision, AFlatMeshWithABoundaryStaysFlatAndInsideItsOutline) {
         EXPECT_GE(p.y, 0.0f);
         EXPECT_LE(p.y, 1.0f);
     }
-    // A boundary vertex moves along the boundary: the middle of an edge stays on it.
-    for (const Vec3& p : m.positions)
-        if (std::abs(p.y) < 1e-6f) EXPECT_NEAR(p.y, 0.0f, 1e-7f);
+    // Boundary vertices follow the boundary alone: moving the interior vertex
+    // moves the corners' limits not at all (they keep indices 0 ... 3), the
+    // centre's (index 4) somewhat.
+    TriangleMesh moved = square;
+    moved.positions[4] = Vec3(0.3f, 0.6f, 0.0f);
+    const TriangleMesh other = loopSubdivide(moved, 3, "square");
+    for (size_t v = 0; v < 4; ++v) EXPECT_EQ(other.positions[v], m.positions[v]) << v;
+    EXPECT_NE(other.positions[4], m.positions[4]);
     for (const Vec3& n : m.normals) EXPECT_NEAR(n.z, 1.0f, 1e-6f);
 }
 

@@ -293,7 +293,8 @@ void writeUpperHemisphereMap(const fs::path& file, int n) {
     std::vector<float> pixels(size_t(n) * size_t(n) * 3);
     for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x) {
-            const Vec3 d = equalAreaSquareToSphere(Vec2((x + 0.5f) / n, (y + 0.5f) / n));
+            const Vec3 d = equalAreaSquareToSphere(
+                Vec2((static_cast<float>(x) + 0.5f) / static_cast<float>(n), (static_cast<float>(y) + 0.5f) / static_cast<float>(n)));
             for (int c = 0; c < 3; ++c) pixels[(size_t(y) * n + x) * 3 + c] = d.z > 0.0f ? 1.0f : 0.0f;
         }
     auto out = OIIO::ImageOutput::create(file.string());
