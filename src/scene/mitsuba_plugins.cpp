@@ -11,6 +11,7 @@
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "imported_document.h"
 #include "mitsuba_named_materials.h"
 #include "spectrum_to_rgb.h"
 #include "strahl/core/error.h"
@@ -97,14 +98,6 @@ json vec3(glm::dvec3 v) { return json::array({v.x, v.y, v.z}); }
 // "scene.xml:12": names made for objects without an id.
 std::string where(const Object& o) {
     return fs::path(o.place.file).filename().string() + ":" + std::to_string(o.place.line);
-}
-
-// strahl's {"matrix": [...]} transform operation, row-major.
-json matrixOp(const glm::dmat4& m) {
-    json rows = json::array();
-    for (int r = 0; r < 4; ++r)
-        for (int c = 0; c < 4; ++c) rows.push_back(r == 3 ? (c == 3 ? 1.0 : 0.0) : m[c][r]);
-    return json::array({json{{"matrix", rows}}});
 }
 
 // Whether `name` is given, as a property or as a nested object (a texture).
@@ -750,14 +743,14 @@ private:
         } else {
             unsupported(s, "this shape is not supported yet (docs/mitsuba.md lists those that are)");
         }
-        shape["transform"] = matrixOp(toWorld * localToWorld);
+        shape["transform"] = matrixTransform(toWorld * localToWorld);
         if (flip) shape["flip_normals"] = true;  // the meshes: winding and normals turned
         if (s.type != "instance")
             shape["material"] = material(bsdf ? bsdf->object.get() : nullptr,
                                          emitter ? emitter->object.get() : nullptr);
         // The analytic shapes' (u, v) are not Mitsuba's uv: no textures on them.
         const bool analytic = s.type == "sphere" || s.type == "disk" || s.type == "cylinder";
-        if (analytic && shape.contains("material") && usesTextures(materialNamed(shape["material"])))
+        if (analytic && shape.contains("material") && readsTextures(materialNamed(materials_, shape["material"])))
             unsupported(s, "a textured material on a Mitsuba " + s.type +
                                " is not supported (its uv is not Mitsuba's; use a mesh)");
         shape["name"] = s.id.empty() ? s.type + "@" + where(s) : s.id;
@@ -770,26 +763,6 @@ private:
         return {{"type", "parametric"},
                 {"surface", surface},
                 {"tessellation", {{"segments", {segments[0], segments[1]}}}}};
-    }
-
-    const json& materialNamed(const std::string& name) const {
-        for (const json& m : materials_)
-            if (m["name"] == name) return m;
-        fail("internal: no material '", name, "' was made");
-    }
-
-    // Whether a material JSON reads any texture, checkerboard or attribute.
-    static bool usesTextures(const json& value) {
-        if (value.is_object()) {
-            if (value.contains("texture") || value.contains("checkerboard") || value.contains("attribute"))
-                return true;
-            for (const auto& item : value.items())
-                if (usesTextures(item.value())) return true;
-        } else if (value.is_array()) {
-            for (const json& item : value)
-                if (usesTextures(item)) return true;
-        }
-        return false;
     }
 
     std::string shapegroup(const Object& g) {

@@ -11,6 +11,7 @@
 
 #include <glm/gtc/constants.hpp>
 
+#include "imported_document.h"
 #include "mitsuba_named_materials.h"
 #include "spectrum_to_rgb.h"
 #include "strahl/core/error.h"
@@ -34,15 +35,6 @@ json vec3(glm::dvec3 v) { return json::array({v.x, v.y, v.z}); }
 json color(glm::dvec3 c) {
     if (c.r == c.g && c.g == c.b) return c.r;
     return vec3(c);
-}
-
-// strahl's {"matrix": [16 numbers]} transform operation, row by row (the
-// last row of an affine map is 0 0 0 1).
-json matrixOp(const glm::dmat4& m) {
-    json rows = json::array();
-    for (int r = 0; r < 4; ++r)
-        for (int c = 0; c < 4; ++c) rows.push_back(r == 3 ? (c == 3 ? 1.0 : 0.0) : m[c][r]);
-    return json::array({json{{"matrix", rows}}});
 }
 
 [[noreturn]] void unsupported(const Entity& e, const std::string& what) {
@@ -161,7 +153,7 @@ public:
         for (const Shape& shape : s_.shapes) this->shape(shape, true, shapes);
         for (const Instance& instance : s_.instances) {
             json i = {{"type", "instance"}, {"group", group(instance.object)}};
-            i["transform"] = matrixOp(mirror_ * instance.toWorld);
+            i["transform"] = matrixTransform(mirror_ * instance.toWorld);
             i["name"] = "ObjectInstance@" + instance.place.text();
             shapes.push_back(i);
         }
@@ -310,8 +302,8 @@ private:
             if (type == "perspective") fov = number(c, "fov", 90.0);
             lensRadius = number(c, "lensradius", 0.0);
             focus = number(c, "focaldistance", 1e6);
-            for (const char* ignored : {"shutteropen", "shutterclose", "frameaspectratio"}) param(c, ignored);
-            if (const Parameter* a = c.params.find("frameaspectratio"))
+            for (const char* ignored : {"shutteropen", "shutterclose"}) param(c, ignored);
+            if (const Parameter* a = param(c, "frameaspectratio"))
                 bad(*a, "a frame aspect ratio other than the image's is not supported");
             refuseUnread(c);
             if (!(fov > 0.0 && fov < 180.0)) unsupported(c, "fov must lie in (0, 180)");
@@ -930,7 +922,7 @@ private:
         } else {
             unsupported(e, "this shape is not supported (trianglemesh, plymesh, sphere, disk, cylinder)");
         }
-        shape["transform"] = matrixOp((world ? mirror_ : glm::dmat4(1.0)) * s.toWorld * local);
+        shape["transform"] = matrixTransform((world ? mirror_ : glm::dmat4(1.0)) * s.toWorld * local);
         // pbrt's front is the winding's side transformed, turned around by
         // ReverseOrientation, or with shading normals the side they point to
         // (pbrt ignores ReverseOrientation then); strahl keeps the winding's
@@ -939,7 +931,7 @@ private:
         shape["material"] = material(s);
         // The analytic shapes' (u, v) are not pbrt's: no textures on them.
         if ((e.type == "sphere" || e.type == "disk" || e.type == "cylinder") &&
-            usesTextures(materialNamed(shape["material"])))
+            readsTextures(materialNamed(materials_, shape["material"])))
             unsupported(e, "a textured material on a " + e.type +
                                " is not supported yet (its (u, v) are not pbrt's; use a mesh)");
         shape["name"] = e.type + "@" + e.place.text();
@@ -990,25 +982,6 @@ private:
         if (const Parameter* S = e.params.find("S")) bad(*S, "per-vertex tangents are not supported");
         param(e, "faceIndices");  // ptex face ids: no ptex textures here
         return mesh;
-    }
-
-    const json& materialNamed(const std::string& name) const {
-        for (const json& m : materials_)
-            if (m["name"] == name) return m;
-        fail("internal: no material '", name, "' was made");
-    }
-
-    // Whether a material reads any texture or checkerboard.
-    static bool usesTextures(const json& value) {
-        if (value.is_object()) {
-            if (value.contains("texture") || value.contains("checkerboard")) return true;
-            for (const auto& item : value.items())
-                if (item.key() != "normal_map" && usesTextures(item.value())) return true;
-        } else if (value.is_array()) {
-            for (const json& item : value)
-                if (usesTextures(item)) return true;
-        }
-        return false;
     }
 
     std::string group(const std::string& object) {
