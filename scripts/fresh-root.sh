@@ -7,7 +7,9 @@
 # it and, inside it (chroot, as root, with /proc, /sys and /dev mounted):
 #   1. runs README command 1 verbatim (read from README.md, so the two cannot drift);
 #   2. checks that out/default.exr and out/default.png exist;
-#   3. runs scripts/test.sh --quick (the Release ctest suite).
+#   3. runs scripts/test.sh --quick (the Release ctest suite), or with
+#      --command2 README command 2 verbatim (the whole suite: Release,
+#      sanitizers, fuzzing), which is what CI does (.ci/run).
 # Every step prints how long it took; a failing step prints its whole output and
 # the script exits non-zero. The host's packages are never touched: debootstrap
 # itself, when the host lacks it, is unpacked from its .deb into the cache.
@@ -18,7 +20,11 @@
 # cached beside it, which speeds up later runs on the same machine without
 # changing what gets installed into the root.
 #
-# Usage: scripts/fresh-root.sh [--ref REF] [--refresh] [--keep]
+# Usage: scripts/fresh-root.sh [--command2] [--shared DIR] [--ref REF] [--refresh] [--keep]
+#   --command2  step 3 runs README command 2 instead of scripts/test.sh --quick
+#   --shared DIR  mount DIR read-only where the clone's ../shared is (the shared
+#               test data set; without it, the tests that need it skip, as in a
+#               user's clone)
 #   --ref REF   clone this commit/branch instead of HEAD (e.g. a throwaway branch
 #               with a package removed from scripts/packages.txt, to see it fail)
 #   --refresh   rebuild the cached bare root
@@ -26,13 +32,21 @@
 # Environment: STRAHL_CACHE (default /var/cache/strahl).
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-ref=HEAD refresh=0 keep=0
+ref=HEAD refresh=0 keep=0 command2=0 shared=""
+usage="usage: scripts/fresh-root.sh [--command2] [--shared DIR] [--ref REF] [--refresh] [--keep]"
 while (($#)); do
   case "$1" in
+    --command2) command2=1; shift ;;
+    --shared)
+      shared="${2:?--shared needs a folder}"
+      [ -d "$shared" ] || { echo "fresh-root: --shared: '$shared' is not a folder" >&2; exit 2; }
+      shared="$(cd "$shared" && pwd)"
+      shift 2
+      ;;
     --ref) ref="${2:?--ref needs a commit or branch}"; shift 2 ;;
     --refresh) refresh=1; shift ;;
     --keep) keep=1; shift ;;
-    *) echo "fresh-root: unknown argument '$1' (usage: scripts/fresh-root.sh [--ref REF] [--refresh] [--keep])" >&2; exit 2 ;;
+    *) echo "fresh-root: unknown argument '$1' ($usage)" >&2; exit 2 ;;
   esac
 done
 [ "$(id -u)" -eq 0 ] || { echo "fresh-root: needs root (debootstrap, chroot and mount); run it with sudo" >&2; exit 2; }
@@ -196,6 +210,12 @@ mount_into sys -t sysfs sysfs
 mount_into dev --bind /dev
 mount_into dev/pts --bind /dev/pts
 mount_into var/cache/apt/archives --bind "$cache/apt-archives"
+if [ -n "$shared" ]; then
+  # Read-only: a test that wrote into the shared data set would fail here.
+  mount_into src/shared --bind "$shared"
+  mount -o remount,bind,ro "$rootfs/src/shared"
+  echo "fresh-root: $shared mounted read-only as the clone's ../shared"
+fi
 
 # Runs a command line in the root, in the clone, as a new user's login would.
 in_root() {
@@ -204,9 +224,14 @@ in_root() {
     /bin/bash -c "cd /src/strahl && $1"
 }
 
-# README command 1, verbatim: the first command line after "# 1." in README.md.
-command1="$(awk '/^# 1\./ { found = 1; next } found && !/^#/ && NF { print; exit }' "$rootfs/src/strahl/README.md")"
+# README command N, verbatim: the first command line after "# N." in README.md.
+readme_command() {
+  awk -v n="$1" '$0 ~ "^# " n "\\." { found = 1; next } found && !/^#/ && NF { print; exit }' "$rootfs/src/strahl/README.md"
+}
+command1="$(readme_command 1)"
 [ -n "$command1" ] || fail "README.md has no command after a '# 1.' line"
+command2="$(readme_command 2)"
+[ -n "$command2" ] || fail "README.md has no command after a '# 2.' line"
 
 step command1 "README command 1: $command1" in_root "$command1"
 check_outputs() {
@@ -218,6 +243,13 @@ check_outputs() {
   return $ok
 }
 step outputs "outputs out/default.exr and out/default.png" check_outputs
-step test-quick "scripts/test.sh --quick" in_root "./scripts/test.sh --quick"
-tail -n 1 "$logs/test-quick.log"
+if ((command2)); then
+  step command2 "README command 2: $command2" in_root "$command2"
+  # The stages' times and counts (the whole output is printed only on failure).
+  grep -E '^(sanitize: (build|ctest) took|fuzz: built|fuzz: [0-9]+ targets)|tests passed, [0-9]+ tests? failed' "$logs/command2.log" || true
+  tail -n 1 "$logs/command2.log"
+else
+  step test-quick "scripts/test.sh --quick" in_root "./scripts/test.sh --quick"
+  tail -n 1 "$logs/test-quick.log"
+fi
 echo "fresh-root: passed"
