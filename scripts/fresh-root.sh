@@ -32,11 +32,11 @@
 # Environment: STRAHL_CACHE (default /var/cache/strahl).
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-ref=HEAD refresh=0 keep=0 command2=0 shared=""
+ref=HEAD refresh=0 keep=0 run_command2=0 shared=""
 usage="usage: scripts/fresh-root.sh [--command2] [--shared DIR] [--ref REF] [--refresh] [--keep]"
 while (($#)); do
   case "$1" in
-    --command2) command2=1; shift ;;
+    --command2) run_command2=1; shift ;;
     --shared)
       shared="${2:?--shared needs a folder}"
       [ -d "$shared" ] || { echo "fresh-root: --shared: '$shared' is not a folder" >&2; exit 2; }
@@ -243,7 +243,7 @@ check_outputs() {
   return $ok
 }
 step outputs "outputs out/default.exr and out/default.png" check_outputs
-if ((command2)); then
+if ((run_command2)); then
   step command2 "README command 2: $command2" in_root "$command2"
   # The stages' times and counts (the whole output is printed only on failure).
   grep -E '^(sanitize: (build|ctest) took|fuzz: built|fuzz: [0-9]+ targets)|tests passed, [0-9]+ tests? failed' "$logs/command2.log" || true
