@@ -125,6 +125,18 @@ Bsdf Bsdf::plastic(const Color& kd, float eta, float alpha, const PlasticCoat& c
     return Bsdf(PlasticModel{microfacets, base, eta, internal, coat.nonlinear, coat.rough}, base);
 }
 
+Bsdf Bsdf::coatedConductor(const CoatedBase& layers, float metalAlpha, float coatAlpha) {
+    requireNonNegative("coated conductor", "metal alpha", metalAlpha);
+    requireNonNegative("coated conductor", "coat alpha", coatAlpha);
+    const MicrofacetModel& model = layers.microfacets();
+    const CoatedConductorModel coated{MicrofacetDistribution(coatAlpha, coatAlpha, model),
+                                      MicrofacetDistribution(metalAlpha, metalAlpha, model), &layers};
+    // albedo: what the smooth layers reflect at normal incidence.
+    const Vec3 normal(0.0f, 0.0f, 1.0f);
+    const Color albedo = Color(fresnelDielectric(1.0f, layers.coatEta())) + coated.mirrorThroughCoat(normal);
+    return Bsdf(coated, albedo);
+}
+
 Bsdf Bsdf::metallicRoughness(const Color& base, float metallic, float alpha, float eta) {
     requireColor("metallicRoughness", "base", base);
     requireNonNegative("metallicRoughness", "metallic", metallic);
@@ -193,6 +205,9 @@ BsdfModel roughenedModel(const BsdfModel& model, float alpha) {
                 // A rough coat's tables hold its own alpha: only a coat without
                 // them (smooth, or the 1 - F approximation) can change alpha.
                 if (!m.roughCoat) out.microfacets = atLeast(m.microfacets, alpha);
+            } else if constexpr (std::is_same_v<Model, CoatedConductorModel>) {
+                out.coat = atLeast(m.coat, alpha);
+                out.metal = atLeast(m.metal, alpha);
             } else if constexpr (std::is_same_v<Model, MetallicRoughnessModel>) {
                 out.ggx = atLeast(m.ggx, alpha);
             } else if constexpr (std::is_same_v<Model, PhongModel>) {

@@ -10,37 +10,11 @@
 #include "strahl/bsdf/fresnel.h"
 #include "strahl/bsdf/local_frame.h"
 #include "strahl/core/error.h"
+#include "quadrature.h"
 
 namespace strahl {
 
 namespace {
-
-struct Node {
-    double x, w;
-};
-
-// Gauss-Legendre nodes and weights on [0, 1]: the roots of P_n by Newton's
-// method from the Chebyshev estimates cos(pi (i + 3/4) / (n + 1/2)).
-std::vector<Node> gaussLegendre01(int n) {
-    std::vector<Node> nodes(n);
-    for (int i = 0; i < n; ++i) {
-        double x = std::cos(3.14159265358979323846 * (i + 0.75) / (n + 0.5)), dp = 1.0;
-        for (int iteration = 0; iteration < 100; ++iteration) {
-            double p0 = 1.0, p1 = x;  // P_0, P_1, then the recurrence up to P_n
-            for (int k = 2; k <= n; ++k) {
-                const double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = n * (x * p1 - p0) / (x * x - 1.0);
-            const double step = p1 / dp;
-            x -= step;
-            if (std::abs(step) < 1e-15) break;
-        }
-        nodes[i] = {0.5 * (1.0 - x), 1.0 / ((1.0 - x * x) * dp * dp)};  // weight 2/.. halved
-    }
-    return nodes;
-}
 
 // Quadrature resolution: the transmittance from outside is smooth in the
 // sampling coordinates (32 x 32, Mitsuba's choice); from inside, total internal
@@ -80,10 +54,10 @@ InterfaceAlbedo roughInterfaceAlbedo(const MicrofacetDistribution& dist, float c
     //   T = the same with 1 - F and wi refracted (the Jacobians of both maps
     //       cancel against the lobes' denominators, docs/materials.md),
     // and m is drawn with density normalPdf(wo, m).
-    const std::vector<Node> q = gaussLegendre01(nodes);
+    const std::vector<QuadratureNode> q = gaussLegendre01(nodes);
     double r = 0.0, t = 0.0;
-    for (const Node& a : q) {
-        for (const Node& b : q) {
+    for (const QuadratureNode& a : q) {
+        for (const QuadratureNode& b : q) {
             const Vec3 m = dist.sampleNormal(wo, Vec2(float(a.x), float(b.x)));
             const float cosOm = glm::dot(wo, m);
             const float pdf = dist.normalPdf(wo, m);

@@ -613,20 +613,23 @@ private:
         unsupported(m, "a textured roughness is not supported (strahl's roughness is √alpha, a texture cannot be remapped)");
     }
 
-    // Sets roughness keys from pbrt's roughness/uroughness/vroughness.
-    void microfacets(const Entity& m, json& out, double fallback) const {
+    // Sets strahl's `key` (or key_u and key_v when they differ) from pbrt's
+    // roughness/uroughness/vroughness, after `prefix` ("conductor." in a
+    // coatedconductor).
+    void microfacets(const Entity& m, json& out, double fallback, const std::string& prefix = "",
+                     const std::string& key = "roughness") const {
         const bool remap = boolean(m, "remaproughness", true);
-        const std::optional<json> r = floatInput(m, "roughness");
-        const std::optional<json> u = floatInput(m, "uroughness");
-        const std::optional<json> v = floatInput(m, "vroughness");
+        const std::optional<json> r = floatInput(m, prefix + "roughness");
+        const std::optional<json> u = floatInput(m, prefix + "uroughness");
+        const std::optional<json> v = floatInput(m, prefix + "vroughness");
         const json ru = u ? *u : (r ? *r : json(fallback));
         const json rv = v ? *v : (r ? *r : json(fallback));
         const json a = roughness(m, ru, remap), b = roughness(m, rv, remap);
         if (a == b) {
-            if (a.get<double>() != 0.0) out["roughness"] = a;
+            if (a.get<double>() != 0.0) out[key] = a;
         } else {
-            out["roughness_u"] = a;
-            out["roughness_v"] = b;
+            out[key + "_u"] = a;
+            out[key + "_v"] = b;
         }
     }
 
@@ -643,9 +646,11 @@ private:
         bad(*p, "a spectrally varying index of refraction is not supported (give a float)");
     }
 
-    json conductorEtaK(const Entity& m, json& out) const {
-        const Parameter* etaP = param(m, "eta");
-        const Parameter* kP = param(m, "k");
+    // eta and k from pbrt's eta and k (after `prefix`: "conductor." in a
+    // coatedconductor) or reflectance.
+    json conductorEtaK(const Entity& m, json& out, const std::string& prefix = "") const {
+        const Parameter* etaP = param(m, prefix + "eta");
+        const Parameter* kP = param(m, prefix + "k");
         const Parameter* refl = param(m, "reflectance");
         if (refl && (etaP || kP)) unsupported(m, "give either reflectance or eta and k");
         if (refl) {
@@ -704,6 +709,25 @@ private:
             // thickness only matters with albedo (docs/pbrt.md); maxdepth and
             // nsamples tune pbrt's stochastic evaluation.
             for (const char* ignored : {"thickness", "maxdepth", "nsamples"}) param(m, ignored);
+        } else if (m.type == "coatedconductor") {
+            // A conductor under a dielectric coat, with the layer's absorption
+            // (pbrt's thickness at albedo 0: exp(-thickness / cos) per crossing).
+            out = {{"type", "coated_conductor"}};
+            conductorEtaK(m, out, "conductor.");
+            microfacets(m, out, 0.0, "conductor.");
+            const double ior = eta(m, "interface.eta", 1.5);
+            if (!(ior > 1.0 && ior <= 4.0)) unsupported(m, "interface.eta must lie in (1, 4]");
+            out["ior"] = ior;
+            microfacets(m, out, 0.0, "interface.", "coat_roughness");
+            if (out.contains("roughness_u") || out.contains("coat_roughness_u"))
+                unsupported(m, "an anisotropic coated conductor is not supported");
+            if (const Parameter* a = param(m, "albedo"); a && glm::length(constantColor(*a, Use::Reflectance)) > 0.0)
+                bad(*a, "a scattering medium in the coat is not supported (albedo must be 0)");
+            const double thickness = number(m, "thickness", 0.01);
+            if (!(thickness >= 0.0 && thickness <= 100.0)) unsupported(m, "thickness must lie in [0, 100]");
+            if (thickness > 0.0) out["thickness"] = thickness;
+            param(m, "g");
+            for (const char* ignored : {"maxdepth", "nsamples"}) param(m, ignored);
         } else if (m.type == "conductor") {
             out = {{"type", "conductor"}};
             conductorEtaK(m, out);
@@ -745,7 +769,7 @@ private:
             // A boundary between media, invisible to light.
             out = {{"type", "diffuse"}, {"opacity", 0}};
         } else {
-            unsupported(m, "this material is not supported (diffuse, coateddiffuse, conductor, dielectric, "
+            unsupported(m, "this material is not supported (diffuse, coateddiffuse, coatedconductor, conductor, dielectric, "
                            "thindielectric, diffusetransmission, mix, interface)");
         }
         if (const Parameter* n = param(m, "normalmap")) {

@@ -37,6 +37,7 @@ std::vector<Case> reflectionModels() {
         {"rough plastic", Bsdf::plastic(Color(0.4f, 0.6f, 0.8f), 1.5f, 0.3f)},
         {"smooth plastic", Bsdf::plastic(Color(0.4f, 0.6f, 0.8f), 1.5f, 0.0f)},
         {"metallic-roughness", Bsdf::metallicRoughness(Color(0.7f, 0.4f, 0.2f), 0.4f, 0.3f)},
+        {"coated conductor", test::coatedConductor(iron.eta, iron.k, 0.3f, 1.5f, 0.2f, 0.05f)},
     };
 }
 

@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <deque>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -24,6 +26,19 @@ constexpr double kPiD = 3.14159265358979323846;
 inline Vec3 direction(float thetaDeg, float phiDeg = 0.0f) {
     const float t = thetaDeg * kPi / 180.0f, p = phiDeg * kPi / 180.0f;
     return Vec3(std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t));
+}
+
+// A coated conductor (Bsdf::coatedConductor) whose per-material layers live
+// to the end of the test program, as a material's would: eta and k of the
+// metal in vacuum, the coat's index, alphas of metal and coat, the layer's
+// thickness.
+inline Bsdf coatedConductor(const Color& eta, const Color& k, float metalAlpha, float coatEta, float coatAlpha,
+                            float thickness = 0.0f) {
+    static std::mutex mutex;
+    static std::deque<CoatedBase> kept;
+    const std::lock_guard lock(mutex);
+    kept.emplace_back(CoatedLayers{eta, k, coatEta, thickness, {}});
+    return Bsdf::coatedConductor(kept.back(), metalAlpha, coatAlpha);
 }
 
 inline Vec2 next2(Pcg32& rng) {

@@ -47,6 +47,8 @@ TEST(WhiteFurnace, LosslessBsdfsReflectEverything) {
         {"rough metallic-roughness white", Bsdf::metallicRoughness(Color(1.0f), 0.0f, 0.25f)},
         // Last, so the cases above keep their seeds.
         {"diffuse transmission R + T = 1", Bsdf::diffuseTransmission(Color(0.7f, 0.5f, 0.2f), Color(0.3f, 0.5f, 0.8f))},
+        // A perfect mirror (|r| = 1) under a smooth coat: every round trip summed.
+        {"coated perfect mirror", test::coatedConductor(Color(0.0f), Color(1.0f), 0.0f, 1.5f, 0.0f, 0.0f)},
     };
     uint64_t seed = 1;
     for (const Case& c : cases) {
@@ -104,6 +106,15 @@ std::vector<Case> everyModel() {
     }
     cases.push_back({"anisotropic F=1", Bsdf::conductor(Color(0.0f), Color(1.0f), 0.05f, 0.6f)});
     cases.push_back({"diffuse transmission", Bsdf::diffuseTransmission(Color(0.6f), Color(0.4f))});  // last: the others keep their seeds
+    for (float base : {0.0f, 0.05f, 0.3f, 1.0f}) {
+        for (float coat : {0.0f, 0.1f, 0.5f}) {
+            for (float eta : {1.2f, 1.5f, 2.5f}) {
+                cases.push_back({"coated F=1 base alpha=" + std::to_string(base) + " coat alpha=" + std::to_string(coat) +
+                                     " eta=" + std::to_string(eta),
+                                 test::coatedConductor(Color(0.0f), Color(eta), base, eta, coat, 0.0f)});
+            }
+        }
+    }
     return cases;
 }
 

@@ -76,6 +76,12 @@ std::vector<Case> nonDeltaModels() {
          Bsdf::blend(Bsdf::blend(Bsdf::diffuse(Color(0.2f)), Bsdf::phong(Color(0.3f), Color(0.6f), 20.0f), 0.5f),
                      Bsdf::blend(Bsdf::dielectric(1.5f, 0.3f), Bsdf::conductor(gold.eta, gold.k, 0.0f, 0.0f), 0.5f),
                      0.3f)},
+        {"coated gold, rough base, smooth coat",
+         test::coatedConductor(gold.eta, gold.k, 0.2f, 1.5f, 0.0f, 0.01f)},
+        {"coated gold, rough base, rough coat",
+         test::coatedConductor(gold.eta, gold.k, 0.3f, 1.5f, 0.15f, 0.0f)},
+        {"coated gold, smooth base, rough coat",
+         test::coatedConductor(gold.eta, gold.k, 0.0f, 1.5f, 0.2f, 0.0f)},
     };
 }
 
@@ -179,6 +185,10 @@ TEST(BsdfSampling, ChiSquareGoodnessOfFit) {
         {"metallic-roughness", Bsdf::metallicRoughness(Color(0.8f, 0.6f, 0.4f), 0.5f, 0.3f),
          direction(50, 20)},
         {"lambert", Bsdf::diffuse(Color(0.5f)), direction(20)},
+        {"coated copper, rough base 20", test::coatedConductor(copper.eta, copper.k, 0.3f, 1.5f, 0.0f, 0.0f),
+         direction(20, 40)},
+        {"coated copper, both rough 60", test::coatedConductor(copper.eta, copper.k, 0.4f, 1.6f, 0.2f, 0.0f),
+         direction(60, 40)},
     };
     // Sidak correction: the whole suite rejects a correct sampler with
     // probability 1%, whatever the number of cases.

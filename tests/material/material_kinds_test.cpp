@@ -17,7 +17,7 @@ TEST(MaterialKinds, NamesFollowTheVariantOrder) {
     const auto names = kindNames<MaterialKind>();
     const std::vector<std::string_view> expected = {
         "diffuse",         "phong",   "blinn",              "conductor", "dielectric",
-        "thin_dielectric", "diffuse_transmission", "plastic", "metallic_roughness", "principled", "blend", "emissive"};
+        "thin_dielectric", "diffuse_transmission", "plastic", "coated_conductor", "metallic_roughness", "principled", "blend", "emissive"};
     EXPECT_EQ(std::vector<std::string_view>(names.begin(), names.end()), expected);
 }
 
@@ -53,7 +53,7 @@ TEST(MaterialKinds, ForEachTextureVisitsTheKindsTexturesThenOpacityEmissionNorma
     const std::vector<std::pair<MaterialKind, int>> cases = {
         {DiffuseMaterial{}, 1},    {PhongMaterial{}, 1},     {BlinnMaterial{}, 1},
         {ConductorMaterial{}, 2},  {DielectricMaterial{}, 2}, {ThinDielectricMaterial{}, 1},
-        {PlasticMaterial{}, 2},
+        {PlasticMaterial{}, 2},       {CoatedConductorMaterial{}, 2},
         {MetallicRoughnessMaterial{}, 3}, {PrincipledMaterial{}, 12}, {blendOfPlasticAndDiffuse(), 2 + 1 + 1},
         {EmissiveMaterial{}, 0}};
     for (const auto& [kind, own] : cases) {
@@ -109,6 +109,9 @@ TEST(MaterialKinds, DefaultParametersGiveTheDocumentedBsdf) {
     expectSameBsdf(DielectricMaterial{}.bsdf(p), Bsdf::dielectric(1.5f, 0.0f, Color(1.0f)),
                    "dielectric");
     expectSameBsdf(PlasticMaterial{}.bsdf(p), Bsdf::plastic(Color(0.8f), 1.5f, 0.0f), "plastic");
+    expectSameBsdf(CoatedConductorMaterial{}.bsdf(p),
+                   Bsdf::coatedConductor(CoatedBase(CoatedLayers{aluminium.eta, aluminium.k, 1.5f, 0.0f, {}}), 0.0f, 0.0f),
+                   "coated_conductor");
     expectSameBsdf(MetallicRoughnessMaterial{}.bsdf(p),
                    Bsdf::metallicRoughness(Color(1.0f), 1.0f, 1.0f, 1.5f), "metallic_roughness");
     expectSameBsdf(EmissiveMaterial{}.bsdf(p), Bsdf::black(), "emissive");

@@ -161,6 +161,32 @@ TEST(PbrtImport, MaterialsMapOntoStrahlsModels) {
     EXPECT_NO_THROW(SceneDocument::fromText(scene(kTriangle), "scene.pbrt").parse());
 }
 
+TEST(PbrtImport, CoatedConductorKeepsBothLayersAndTheLayersThickness) {
+    const std::string text = scene(
+        "Material \"coatedconductor\" \"float conductor.roughness\" 0.09 \"float interface.roughness\" 0.01\n"
+        "  \"spectrum conductor.eta\" \"metal-Au-eta\" \"spectrum conductor.k\" \"metal-Au-k\"\n" + kTriangle +
+        "Material \"coatedconductor\" \"float interface.eta\" 1.7 \"float thickness\" 0\n"
+        "  \"rgb reflectance\" [0.5 0.5 0.5]\n" + kTriangle);
+    const json doc = document(text);
+    const json& m = doc["materials"];
+    ASSERT_EQ(m.size(), 2u);
+    EXPECT_EQ(m[0]["type"], "coated_conductor");
+    // Remapped: alpha = sqrt(r), strahl's roughness = sqrt(alpha) = r^(1/4).
+    EXPECT_NEAR(m[0]["roughness"].get<double>(), std::pow(0.09, 0.25), 1e-12);
+    EXPECT_NEAR(m[0]["coat_roughness"].get<double>(), std::pow(0.01, 0.25), 1e-12);
+    EXPECT_EQ(m[0]["ior"], 1.5);
+    EXPECT_EQ(m[0]["thickness"], 0.01);  // pbrt's default
+    EXPECT_GT(vec(m[0]["k"]).r, 3.0);  // gold's k in the red
+    EXPECT_EQ(m[1]["ior"], 1.7);
+    EXPECT_FALSE(m[1].contains("thickness"));
+    EXPECT_EQ(m[1]["eta"], 1.0);
+    EXPECT_NEAR(m[1]["k"].get<double>(), 2.0, 1e-12);
+    EXPECT_NO_THROW(SceneDocument::fromText(text, "scene.pbrt").parse());
+
+    EXPECT_THAT(errorOf(scene("Material \"coatedconductor\" \"float conductor.uroughness\" 0.1\n" + kTriangle)),
+                HasSubstr("an anisotropic coated conductor is not supported"));
+}
+
 TEST(PbrtImport, NamedMaterialsMayComeLaterAndObjectsAreGroups) {
     const json doc = document(scene(
         "NamedMaterial \"late\"\n"

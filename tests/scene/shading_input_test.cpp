@@ -62,7 +62,7 @@ const std::string kNotAnImage = "this is a text file, not an image\n";
 TEST(ShadingInput, UnknownMaterialTypeListsTheTypes) {
     EXPECT_EQ(materialError(R"({"name": "m", "type": "velvet"})"),
               "scene.json: /materials/0/type: must be one of diffuse, phong, blinn, conductor, "
-              "dielectric, thin_dielectric, diffuse_transmission, plastic, metallic_roughness, principled, blend, emissive, got 'velvet'");
+              "dielectric, thin_dielectric, diffuse_transmission, plastic, coated_conductor, metallic_roughness, principled, blend, emissive, got 'velvet'");
 }
 
 TEST(ShadingInput, KeyOfAnotherTypeListsTheAllowedKeys) {
@@ -150,6 +150,23 @@ TEST(ShadingInput, BlendKeys) {
     EXPECT_TRUE(std::holds_alternative<ConductorMaterial>(blend.parts[0]->kind));
     const auto& inner = std::get<BlendMaterial>(blend.parts[1]->kind);
     EXPECT_EQ(std::get<DiffuseMaterial>(inner.parts[1]->kind).color.value, Color(0.1f));
+}
+
+TEST(ShadingInput, CoatedConductorKeys) {
+    EXPECT_EQ(materialError(R"({"name": "m", "type": "coated_conductor", "thickness": -1})"),
+              "scene.json: /materials/0/thickness: must be in [0, 100], got -1");
+    EXPECT_EQ(materialError(R"({"name": "m", "type": "coated_conductor", "metal": "gold", "k": 2})"),
+              "scene.json: /materials/0: give either 'metal' or 'eta' and 'k', not both");
+    EXPECT_EQ(materialError(R"({"name": "m", "type": "coated_conductor", "ior": 0.5})"),
+              "scene.json: /materials/0/ior: must be in [1.0001, 4], got 0.5");
+    const SceneDesc ok = parseSceneText(
+        R"({"materials": [{"name": "m", "type": "coated_conductor", "metal": "gold", "roughness": 0.3,
+            "coat_roughness": 0.1, "ior": 1.6, "thickness": 0.01}], )" + kTriangle + "}",
+        "scene.json");
+    const auto& m = std::get<CoatedConductorMaterial>(ok.materials.at(0).material.kind);
+    EXPECT_EQ(m.layers->coatEta(), 1.6f);
+    EXPECT_EQ(m.layers->thickness(), 0.01f);
+    EXPECT_EQ(m.eta, findMetalPreset("gold")->eta);
 }
 
 TEST(ShadingInput, PrincipledKeys) {

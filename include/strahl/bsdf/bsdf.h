@@ -79,6 +79,11 @@ public:
     static Bsdf plastic(const Color& kd, float eta, float alpha) {
         return plastic(kd, eta, alpha, PlasticCoat{});
     }
+    // A conductor under a dielectric coat (coated_base.h: the metal, the
+    // coat's index, the layer between them, computed once per material; it
+    // must outlive the Bsdf) with GGX alphas for the metal and the coat, 0
+    // smooth. bsdf_models.h, CoatedConductorModel.
+    static Bsdf coatedConductor(const CoatedBase& layers, float metalAlpha, float coatAlpha);
     // glTF 2.0 metallic-roughness: metallic blends a Schlick conductor with
     // F0 = base colour against a dielectric-coated diffuse with diffuse base
     // colour and Schlick F0 = ((eta - 1) / (eta + 1))^2. base, metallic and
@@ -108,7 +113,8 @@ public:
     // This BSDF with every glossy or specular lobe at least `alpha` rough
     // (Cycles' "filter glossy", which the path tracer applies after rough
     // bounces; biased): microfacet lobes (conductor, dielectric, plastic
-    // without a rough coat's tables, metallic-roughness) get alpha =
+    // without a rough coat's tables, both layers of the coated conductor,
+    // metallic-roughness) get alpha =
     // max(alpha, own), Phong and Blinn the exponent 2 / alpha^2 - 2 of that
     // width if it is smaller. Lambert, the thin dielectric and the principled
     // BSDF stay as they are. alpha <= 0: unchanged.

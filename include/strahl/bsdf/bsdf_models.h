@@ -15,6 +15,7 @@
 #include <variant>
 
 #include "strahl/bsdf/bsdf_sample.h"
+#include "strahl/bsdf/coated_base.h"
 #include "strahl/bsdf/microfacet.h"
 #include "strahl/bsdf/rough_coat.h"
 
@@ -146,6 +147,42 @@ struct PlasticModel {
     std::optional<BsdfSample> sample(const Vec3& wo, float uLobe, const Vec2& u) const;
 };
 
+// A conductor under a smooth or rough dielectric coat of index eta, with an
+// optional absorbing layer between them (pbrt-v4's coatedconductor; car
+// paint, lacquered brass). Three lobes: the coat's reflection; the metal seen
+// through the coat's mean surface, both directions refracted into the coat
+// (wo', wi'), f = T(wo) T(wi) a(wo') a(wi') f_metal(wo', wi') / eta^2 with
+// T = 1 - F and a the layer's attenuation; and the light that stays in the
+// coat after that bounce and leaves later, f = E A(wo) A(wi) / N with
+// A(w) = T(w) trapped(w) a(w') (coated_base.h). A smooth metal is a delta
+// mirror whose round trips between metal and coat are summed exactly.
+// Derivation: docs/materials.md, "Coated conductor".
+struct CoatedConductorModel {
+    MicrofacetDistribution coat, metal;
+    const CoatedBase* layers = nullptr;  // never null
+
+    static constexpr bool kOpaque = true;
+    bool specular() const { return coat.smooth() && metal.smooth(); }
+    // w (outside, upper hemisphere) refracted into the coat, as the upward
+    // direction it has there: same azimuth, sin theta' = sin theta / eta.
+    Vec3 inside(const Vec3& w) const;
+    float coatTransmittance(float cosTheta) const;
+    // The weight of the smooth metal's delta mirror along reflectZ(wo): every
+    // path through the coat, the metal, and back and forth between them.
+    Color mirrorThroughCoat(const Vec3& wo) const;
+    // The trapped light's lobe shape A(w) (0 for a smooth metal).
+    float trappedLobe(const Vec3& w) const;
+    struct LobeProbabilities {
+        float coat, direct;  // the trapped lobe has the rest
+    };
+    LobeProbabilities lobeProbabilities(const Vec3& wo) const;
+    Color directF(const Vec3& wo, const Vec3& wi) const;
+    Color trappedF(const Vec3& wo, const Vec3& wi) const;
+    Color f(const Vec3& wo, const Vec3& wi) const;
+    float pdf(const Vec3& wo, const Vec3& wi) const;
+    std::optional<BsdfSample> sample(const Vec3& wo, float uLobe, const Vec2& u) const;
+};
+
 // glTF 2.0 metallic-roughness: Schlick GGX specular with F0 = lerp(f0Dielectric,
 // base, metallic), plus (1 - metallic) base-coloured diffuse coupled to the
 // dielectric specular's albedo (Kelemen & Szirmay-Kalos 2001).
@@ -200,7 +237,7 @@ using BsdfModel =
     std::variant<bsdf_models::BlackModel, bsdf_models::LambertModel, bsdf_models::DiffuseTransmissionModel,
                  bsdf_models::PhongModel,
                  bsdf_models::ConductorModel, bsdf_models::DielectricModel,
-                 bsdf_models::ThinDielectricModel, bsdf_models::PlasticModel,
+                 bsdf_models::ThinDielectricModel, bsdf_models::PlasticModel, bsdf_models::CoatedConductorModel,
                  bsdf_models::MetallicRoughnessModel, bsdf_models::PrincipledModel>;
 
 }  // namespace strahl

@@ -12,7 +12,6 @@
 //   masking       "height_correlated" | "separable"                  height_correlated
 
 #include <array>
-#include <string>
 #include <string_view>
 
 #include "strahl/bsdf/bsdf.h"
@@ -37,24 +36,7 @@ struct ConductorMaterial {
     template <typename Reader>
     static ConductorMaterial parse(const Reader& r) {
         ConductorMaterial m;
-        const bool preset = r.has("metal");
-        if (preset && (r.has("eta") || r.has("k")))
-            r.fail("give either 'metal' or 'eta' and 'k', not both");
-        if (preset) {
-            const auto metal = r.find("metal");
-            const std::optional<MetalPreset> found = findMetalPreset(metal->string());
-            if (!found) {
-                std::string names;
-                for (const MetalPreset& p : metalPresets())
-                    names += (names.empty() ? "" : ", ") + std::string(p.name);
-                metal->fail("unknown metal '", metal->string(), "' (known: ", names, ")");
-            }
-            m.eta = found->eta;
-            m.k = found->k;
-        } else {
-            if (auto eta = r.find("eta")) m.eta = eta->color();
-            if (auto k = r.find("k")) m.k = k->color();
-        }
+        material_parsing::metal(r, m.eta, m.k);
         if (r.has("roughness") && (r.has("roughness_u") || r.has("roughness_v")))
             r.fail("give either 'roughness' or 'roughness_u' and 'roughness_v', not both");
         if (r.has("roughness_u") != r.has("roughness_v"))

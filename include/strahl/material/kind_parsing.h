@@ -6,6 +6,9 @@
 // numberIn(lo, hi), string(), oneOf({...}), fail(...)), texturedColor(key, out),
 // texturedFloat(key, lo, hi, out) and fail(...).
 
+#include <string>
+
+#include "strahl/bsdf/bsdf.h"
 #include "strahl/bsdf/microfacet.h"
 #include "strahl/material/textured.h"
 
@@ -30,6 +33,28 @@ void ior(const Reader& r, float& ior) {
 template <typename Reader>
 void roughness(const Reader& r, TexturedFloat& roughness) {
     r.texturedFloat("roughness", 0.0f, 1.0f, roughness);
+}
+
+// A metal's complex index: "metal" (a preset name, metalPresets()) or "eta"
+// and "k" (colours; either may be left at its default), not both.
+template <typename Reader>
+void metal(const Reader& r, Color& eta, Color& k) {
+    const bool preset = r.has("metal");
+    if (preset && (r.has("eta") || r.has("k"))) r.fail("give either 'metal' or 'eta' and 'k', not both");
+    if (preset) {
+        const auto metal = r.find("metal");
+        const std::optional<MetalPreset> found = findMetalPreset(metal->string());
+        if (!found) {
+            std::string names;
+            for (const MetalPreset& p : metalPresets()) names += (names.empty() ? "" : ", ") + std::string(p.name);
+            metal->fail("unknown metal '", metal->string(), "' (known: ", names, ")");
+        }
+        eta = found->eta;
+        k = found->k;
+    } else {
+        if (auto value = r.find("eta")) eta = value->color();
+        if (auto value = r.find("k")) k = value->color();
+    }
 }
 
 // "distribution": "ggx" (default) | "beckmann", and "masking":

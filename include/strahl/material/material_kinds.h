@@ -10,6 +10,7 @@
 
 #include "strahl/core/closed_family.h"
 #include "strahl/material/blend.h"
+#include "strahl/material/coated_conductor.h"
 #include "strahl/material/conductor.h"
 #include "strahl/material/dielectric.h"
 #include "strahl/material/diffuse.h"
@@ -26,6 +27,7 @@ namespace strahl {
 using MaterialKind =
     std::variant<DiffuseMaterial, PhongMaterial, BlinnMaterial, ConductorMaterial,
                  DielectricMaterial, ThinDielectricMaterial, DiffuseTransmissionMaterial, PlasticMaterial,
+                 CoatedConductorMaterial,
                  MetallicRoughnessMaterial, PrincipledMaterial, BlendMaterial, EmissiveMaterial>;
 
 // A material kind held by pointer (BlendMaterial's parts).
