@@ -18,12 +18,20 @@ namespace strahl {
 
 // trapped(alpha_j, cos theta_i outside) for a coat index and microfacet
 // model, and per roughness the cosine-weighted mean over the inside
-// hemisphere of what does not leave after a bounce.
+// hemisphere of what does not leave after a bounce. Rows are integrated when
+// first asked for (a material of one roughness needs two, about 30 ms), once,
+// whichever thread asks.
 struct CoatedBase::EscapeTable {
+    struct Row {
+        std::once_flag once;
+        std::array<float, kCosines> trapped{};
+        float meanTrapped = 0.0f;
+    };
     float coatEta;
     MicrofacetModel model;
-    std::array<float, kRoughnesses * kCosines> trapped{};
-    std::array<float, kRoughnesses> meanTrapped{};
+    mutable std::array<Row, kRoughnesses> rows;
+
+    const Row& row(int j) const;
 };
 
 namespace {
@@ -79,35 +87,6 @@ float insideCosine(float cosOutside, float coatEta) {
     return std::sqrt(std::max(0.0f, 1.0f - (1.0f - cosOutside * cosOutside) / (coatEta * coatEta)));
 }
 
-std::shared_ptr<const CoatedBase::EscapeTable> makeTable(float coatEta, MicrofacetModel model) {
-    auto table = std::make_shared<CoatedBase::EscapeTable>();
-    table->coatEta = coatEta;
-    table->model = model;
-    const std::vector<QuadratureNode> nodes = gaussLegendre01(kNormalNodes);
-    static const std::vector<QuadratureNode> cosineNodes = gaussLegendre01(kCosineNodes);
-    for (int j = 0; j < CoatedBase::kRoughnesses; ++j) {
-        const MicrofacetDistribution metal(roughnessAlpha(j), roughnessAlpha(j), model);
-        // What does not leave after one bounce, lit from inside at cos mu.
-        const auto trapped = [&](float mu) {
-            // A smooth metal reflects everything to the mirror direction, at mu.
-            const float escape = metal.smooth() ? transmittanceFromInside(mu, coatEta)
-                                                : escapeAfterOneBounce(metal, mu, coatEta, nodes);
-            return std::clamp(1.0f - escape, 0.0f, 1.0f);
-        };
-        // The rows are indexed by the cosine outside: light from outside only
-        // reaches the metal within the critical cone, where the Fresnel terms
-        // change fastest in the inside cosine but smoothly in the outside one.
-        float* row = &table->trapped[size_t(j) * CoatedBase::kCosines];
-        for (int i = 0; i < CoatedBase::kCosines; ++i) row[i] = trapped(insideCosine(tableCosine(i), coatEta));
-        // The trapped light meets the metal from every inside direction:
-        // 2 integral_0^1 trapped(mu) mu dmu over the whole inside hemisphere.
-        double sum = 0.0;
-        for (const QuadratureNode& n : cosineNodes) sum += n.w * trapped(float(n.x)) * n.x;
-        table->meanTrapped[size_t(j)] = float(2.0 * sum);
-    }
-    return table;
-}
-
 // Tables are shared between materials of the same coat index and model.
 std::shared_ptr<const CoatedBase::EscapeTable> sharedTable(float coatEta, MicrofacetModel model) {
     static std::mutex mutex;
@@ -115,7 +94,10 @@ std::shared_ptr<const CoatedBase::EscapeTable> sharedTable(float coatEta, Microf
     const std::lock_guard lock(mutex);
     for (const auto& t : tables)
         if (t->coatEta == coatEta && t->model.type == model.type && t->model.masking == model.masking) return t;
-    tables.push_back(makeTable(coatEta, model));
+    auto table = std::make_shared<CoatedBase::EscapeTable>();
+    table->coatEta = coatEta;
+    table->model = model;
+    tables.push_back(std::move(table));
     return tables.back();
 }
 
@@ -135,6 +117,32 @@ void requireColor(const char* what, const Color& c) {
 
 }  // namespace
 
+const CoatedBase::EscapeTable::Row& CoatedBase::EscapeTable::row(int j) const {
+    Row& r = rows[size_t(j)];
+    std::call_once(r.once, [&] {
+        static const std::vector<QuadratureNode> nodes = gaussLegendre01(kNormalNodes);
+        static const std::vector<QuadratureNode> cosineNodes = gaussLegendre01(kCosineNodes);
+        const MicrofacetDistribution metal(roughnessAlpha(j), roughnessAlpha(j), model);
+        // What does not leave after one bounce, lit from inside at cos mu.
+        const auto trapped = [&](float mu) {
+            // A smooth metal reflects everything to the mirror direction, at mu.
+            const float escape = metal.smooth() ? transmittanceFromInside(mu, coatEta)
+                                                : escapeAfterOneBounce(metal, mu, coatEta, nodes);
+            return std::clamp(1.0f - escape, 0.0f, 1.0f);
+        };
+        // The row is indexed by the cosine outside: light from outside only
+        // reaches the metal within the critical cone, where the Fresnel terms
+        // change fastest in the inside cosine but smoothly in the outside one.
+        for (int i = 0; i < kCosines; ++i) r.trapped[size_t(i)] = trapped(insideCosine(tableCosine(i), coatEta));
+        // The trapped light meets the metal from every inside direction:
+        // 2 integral_0^1 trapped(mu) mu dmu over the whole inside hemisphere.
+        double sum = 0.0;
+        for (const QuadratureNode& n : cosineNodes) sum += n.w * trapped(float(n.x)) * n.x;
+        r.meanTrapped = float(2.0 * sum);
+    });
+    return r;
+}
+
 CoatedBase::CoatedBase(const CoatedLayers& layers)
     : coatEta_(layers.coatEta), thickness_(layers.thickness), microfacets_(layers.microfacets) {
     requireColor("eta", layers.eta);
@@ -151,25 +159,28 @@ CoatedBase::CoatedBase(const CoatedLayers& layers)
     // The metal's cosine-weighted mean reflectance and the layer's mean
     // round-trip transmittance over the inside hemisphere, where the trapped
     // light travels.
-    Color metal(0.0f);
     for (int c = 0; c < 3; ++c)
-        metal[c] = float(cosineWeighted([&](float mu) { return fresnelConductor(mu, eta_[c], k_[c]); }));
-    const float layer = float(cosineWeighted([&](float mu) { return attenuation(mu) * attenuation(mu); }));
-    for (int j = 0; j < kRoughnesses; ++j) {
-        const float alpha = roughnessAlpha(j);
+        metalMean_[c] = float(cosineWeighted([&](float mu) { return fresnelConductor(mu, eta_[c], k_[c]); }));
+    layerMean_ = float(cosineWeighted([&](float mu) { return attenuation(mu) * attenuation(mu); }));
+}
+
+const CoatedBase::MaterialRow& CoatedBase::materialRow(int j) const {
+    MaterialRow& r = rows_[size_t(j)];
+    std::call_once(r.once, [&] {
         // After the first bounce (about the mean reflectance), each round
         // crosses the layer twice, meets the metal again and leaves with
         // probability q: the sum over the rounds is q R a / (1 - (1 - q) R a).
-        const float q = std::max(1e-6f, 1.0f - table_->meanTrapped[size_t(j)]);
-        const Color round = metal * layer;
-        escape_[size_t(j)] = metal * q * round / (Color(1.0f) - (1.0f - q) * round);
+        const float q = std::max(1e-6f, 1.0f - table_->row(j).meanTrapped);
+        const Color round = metalMean_ * layerMean_;
+        r.escape = metalMean_ * q * round / (Color(1.0f) - (1.0f - q) * round);
         // integral over outside w of T(w) trapped(w) a(w') cos = 2 pi x the
         // integral over cos theta.
-        norm_[size_t(j)] = float(kPi * cosineWeighted([&](float c) {
-                                     return (1.0f - fresnelDielectric(c, coatEta_)) * trapped(alpha, c) *
-                                            attenuation(insideCosine(c, coatEta_));
-                                 }));
-    }
+        r.norm = float(kPi * cosineWeighted([&](float c) {
+                           return (1.0f - fresnelDielectric(c, coatEta_)) * trappedInRow(j, c) *
+                                  attenuation(insideCosine(c, coatEta_));
+                       }));
+    });
+    return r;
 }
 
 float CoatedBase::attenuation(float cosInside) const {
@@ -183,26 +194,31 @@ CoatedBase::Bracket CoatedBase::bracket(float alpha) {
     return {lo, lo + 1, x - float(lo)};
 }
 
-float CoatedBase::trapped(float alpha, float cosOutside) const {
-    const Bracket b = bracket(alpha);
+float CoatedBase::trappedInRow(int j, float cosOutside) const {
+    // Linear in cos(theta) between the row's evenly spaced entries.
     const float x = std::clamp(cosOutside, 0.0f, 1.0f) * float(kCosines - 1);
     const int i = std::min(int(x), kCosines - 2);
     const float f = x - float(i);
-    const auto row = [&](int j) {
-        const float* t = &table_->trapped[size_t(j) * kCosines];
-        return t[i] + f * (t[i + 1] - t[i]);
-    };
-    return row(b.lo) + b.t * (row(b.hi) - row(b.lo));
+    const auto& t = table_->row(j).trapped;
+    return t[size_t(i)] + f * (t[size_t(i) + 1] - t[size_t(i)]);
+}
+
+float CoatedBase::trapped(float alpha, float cosOutside) const {
+    const Bracket b = bracket(alpha);
+    const float lo = trappedInRow(b.lo, cosOutside);
+    return b.t > 0.0f ? lo + b.t * (trappedInRow(b.hi, cosOutside) - lo) : lo;
 }
 
 Color CoatedBase::trappedEscape(float alpha) const {
     const Bracket b = bracket(alpha);
-    return escape_[size_t(b.lo)] + b.t * (escape_[size_t(b.hi)] - escape_[size_t(b.lo)]);
+    const Color lo = materialRow(b.lo).escape;
+    return b.t > 0.0f ? lo + b.t * (materialRow(b.hi).escape - lo) : lo;
 }
 
 float CoatedBase::trappedNorm(float alpha) const {
     const Bracket b = bracket(alpha);
-    return norm_[size_t(b.lo)] + b.t * (norm_[size_t(b.hi)] - norm_[size_t(b.lo)]);
+    const float lo = materialRow(b.lo).norm;
+    return b.t > 0.0f ? lo + b.t * (materialRow(b.hi).norm - lo) : lo;
 }
 
 }  // namespace strahl

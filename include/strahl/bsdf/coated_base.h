@@ -8,6 +8,7 @@
 
 #include <array>
 #include <memory>
+#include <mutex>
 
 #include "strahl/bsdf/microfacet.h"
 #include "strahl/core/math.h"
@@ -25,10 +26,13 @@ struct CoatedLayers {
 class CoatedBase {
 public:
     // Validates (strahl::Error for a negative or NaN colour, a coat index
-    // below 1 or a negative thickness) and tabulates: the first coated
-    // conductor of a coat index and microfacet model integrates its table
-    // (about 0.2 s), later ones share it.
+    // below 1 or a negative thickness). The tables are integrated row by row
+    // (one roughness, about 14 ms) the first time a row is asked for, and
+    // shared by every coated conductor of the same coat index and microfacet
+    // model; thread-safe.
     explicit CoatedBase(const CoatedLayers& layers);
+    CoatedBase(const CoatedBase&) = delete;
+    CoatedBase& operator=(const CoatedBase&) = delete;
 
     const Color& eta() const { return eta_; }  // the metal's index divided by the coat's
     const Color& k() const { return k_; }
@@ -64,13 +68,22 @@ private:
         float t;
     };
     static Bracket bracket(float alpha);
+    // This material's quantities at the table's roughness j.
+    struct MaterialRow {
+        std::once_flag once;
+        float norm = 0.0f;
+        Color escape{0.0f};
+    };
+    const MaterialRow& materialRow(int j) const;
+    float trappedInRow(int j, float cosOutside) const;
 
     Color eta_, k_;
     float coatEta_, thickness_;
     MicrofacetModel microfacets_;
     std::shared_ptr<const EscapeTable> table_;
-    std::array<float, kRoughnesses> norm_{};
-    std::array<Color, kRoughnesses> escape_{};
+    Color metalMean_{0.0f};  // the metal's cosine-weighted mean reflectance inside
+    float layerMean_ = 1.0f;  // the layer's cosine-weighted mean round-trip transmittance
+    mutable std::array<MaterialRow, kRoughnesses> rows_;
 };
 
 }  // namespace strahl
