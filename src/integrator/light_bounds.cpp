@@ -63,6 +63,52 @@ float LightBounds::importance(const Vec3& p, const Vec3& n) const {
     return std::max(power * emitted * received / d2, 0.0f);
 }
 
+ImportanceBounds::ImportanceBounds(const LightBounds& b)
+    : center(b.box.center()),
+      radius(0.5f * glm::length(b.box.diagonal())),
+      axis(b.axis),
+      cosThetaO(std::cos(b.thetaO)),
+      sinThetaO(std::sin(b.thetaO)),
+      cosThetaE(std::cos(b.thetaE)),
+      power(b.power),
+      twoSided(b.twoSided) {}
+
+float ImportanceBounds::importance(const Vec3& p, const Vec3& n) const {
+    // LightBounds::importance step by step, each angle as its cosine (and
+    // sine where a difference needs it); angles in [0, pi], so the sines are
+    // the non-negative square roots.
+    const Vec3 toP = p - center;
+    const float dist2 = glm::dot(toP, toP);
+    float emitted = 1.0f, received = 1.0f;
+    if (dist2 > radius * radius) {
+        const float dist = std::sqrt(dist2);
+        const Vec3 v = toP / dist;
+        const float sinB = std::min(radius / dist, 1.0f);
+        const float cosB = std::sqrt(std::max(0.0f, 1.0f - sinB * sinB));
+        float cosW = std::clamp(glm::dot(axis, v), -1.0f, 1.0f);
+        if (twoSided) cosW = std::abs(cosW);
+        const float sinW = std::sqrt(std::max(0.0f, 1.0f - cosW * cosW));
+        // thetaX = max(thetaW - thetaO, 0)
+        float cosX = 1.0f, sinX = 0.0f;
+        if (cosW < cosThetaO) {
+            cosX = cosW * cosThetaO + sinW * sinThetaO;
+            sinX = std::max(0.0f, sinW * cosThetaO - cosW * sinThetaO);
+        }
+        // thetaPrime = max(thetaX - thetaB, 0); none of the group's light
+        // reaches p once thetaPrime >= thetaE.
+        const float cosPrime = cosX < cosB ? cosX * cosB + sinX * sinB : 1.0f;
+        if (cosPrime <= cosThetaE) return 0.0f;
+        emitted = cosPrime;
+        if (n != Vec3(0.0f)) {
+            const float cosI = std::min(std::abs(glm::dot(n, v)), 1.0f);
+            const float sinI = std::sqrt(std::max(0.0f, 1.0f - cosI * cosI));
+            received = cosI < cosB ? cosI * cosB + sinI * sinB : 1.0f;
+        }
+    }
+    const float d2 = std::max({dist2, 0.01f * radius * radius, 1e-12f});
+    return std::max(power * emitted * received / d2, 0.0f);
+}
+
 LightBounds unite(const LightBounds& first, const LightBounds& second) {
     if (first.power <= 0.0f) return second;
     if (second.power <= 0.0f) return first;

@@ -58,7 +58,7 @@ uint32_t LightBvh::build(std::vector<LightBounds>& lights, std::vector<uint32_t>
         if (task.end - task.begin == 1) {
             Node& leaf = nodes_[self];
             leaf.leaf = true;
-            leaf.bounds = lights[task.begin];
+            leaf.bounds = ImportanceBounds(lights[task.begin]);
             leaf.light = index[task.begin];
             leafOf_[leaf.light] = self;
             continue;
@@ -69,7 +69,7 @@ uint32_t LightBvh::build(std::vector<LightBounds>& lights, std::vector<uint32_t>
             all = unite(all, lights[i]);
             centroids.expand(lights[i].box.center());
         }
-        nodes_[self].bounds = all;
+        nodes_[self].bounds = ImportanceBounds(all);
 
         // The cheapest bin border over the three axes.
         float bestCost = kInfinity;
@@ -122,12 +122,12 @@ uint32_t LightBvh::build(std::vector<LightBounds>& lights, std::vector<uint32_t>
     return root;
 }
 
-float LightBvh::childProbability(const Node& node, int which, const Vec3& p, const Vec3& n) const {
+std::pair<float, float> LightBvh::childProbabilities(const Node& node, const Vec3& p, const Vec3& n) const {
     const float left = nodes_[node.child[0]].bounds.importance(p, n);
     const float right = nodes_[node.child[1]].bounds.importance(p, n);
     const float total = left + right;
-    if (!(total > 0.0f)) return 0.0f;
-    return (which == 0 ? left : right) / total;
+    if (!(total > 0.0f)) return {0.0f, 0.0f};
+    return {left / total, right / total};
 }
 
 std::optional<std::pair<uint32_t, float>> LightBvh::choose(float u, const Vec3& p,
@@ -139,8 +139,7 @@ std::optional<std::pair<uint32_t, float>> LightBvh::choose(float u, const Vec3& 
     uint32_t at = 0;
     while (!nodes_[at].leaf) {
         const Node& node = nodes_[at];
-        const float pLeft = childProbability(node, 0, p, n);
-        const float pRight = childProbability(node, 1, p, n);
+        const auto [pLeft, pRight] = childProbabilities(node, p, n);
         if (!(pLeft + pRight > 0.0f)) return std::nullopt;
         // Rescale u into the chosen child's share, so one number serves the
         // whole walk; kept below 1 against rounding.
@@ -177,7 +176,8 @@ float LightBvh::pmf(uint32_t light, const Vec3& p, const Vec3& n) const {
     float pmf = 1.0f;
     for (size_t i = depth - 1; i > 0; --i) {
         const Node& node = nodes_[path[i]];
-        pmf *= childProbability(node, node.child[0] == path[i - 1] ? 0 : 1, p, n);
+        const auto [pLeft, pRight] = childProbabilities(node, p, n);
+        pmf *= node.child[0] == path[i - 1] ? pLeft : pRight;
     }
     return pmf;
 }

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -176,6 +177,36 @@ TEST(LightBounds, TheUnionOfTwoConesHoldsBoth) {
         }
         EXPECT_EQ(u.power, 2.0f);
     }
+}
+
+TEST(LightBounds, TheWalksImportanceIsTheReferenceImportanceWithoutTrigonometry) {
+    // ImportanceBounds (the tree's nodes) against LightBounds::importance, the
+    // angles written out: every cone, receiver and distance, both sides of
+    // every threshold.
+    Pcg32 rng(11, 2);
+    int nonZero = 0;
+    for (int i = 0; i < 20000; ++i) {
+        LightBounds b;
+        const Vec3 c = randomPoint(rng, 2.0f);
+        b.box.expand(c);
+        b.box.expand(c + Vec3(rng.nextFloat(), rng.nextFloat(), rng.nextFloat()) * (2.0f * rng.nextFloat()));
+        b.axis = randomUnit(rng);
+        b.thetaO = kPi * rng.nextFloat() * rng.nextFloat();
+        b.thetaE = kPi * rng.nextFloat();
+        b.power = 0.1f + 10.0f * rng.nextFloat();
+        b.twoSided = rng.nextFloat() < 0.3f;
+        const Vec3 p = randomPoint(rng, 6.0f);
+        const Vec3 n = rng.nextFloat() < 0.2f ? Vec3(0.0f) : randomUnit(rng);
+        const float reference = b.importance(p, n);
+        const float fast = ImportanceBounds(b).importance(p, n);
+        // The largest value the importance can take at this distance.
+        const float radius = 0.5f * glm::length(b.box.diagonal());
+        const float d2 = glm::dot(p - b.box.center(), p - b.box.center());
+        const float scale = b.power / std::max({d2, 0.01f * radius * radius, 1e-12f});
+        EXPECT_NEAR(fast, reference, 1e-3f * scale) << i;
+        if (reference > 0.0f) ++nonZero;
+    }
+    EXPECT_GT(nonZero, 5000);
 }
 
 TEST(LightBounds, TheOrientationMeasureOfAHemisphereEmitterIsPi) {

@@ -38,6 +38,26 @@ struct LightBounds {
     float importance(const Vec3& p, const Vec3& n) const;
 };
 
+// LightBounds as the light BVH's walk evaluates it: the box as its centre and
+// bounding-sphere radius, the cone's angles as cosines and sines, computed once
+// when the tree is built. importance() is LightBounds::importance with the
+// angle arithmetic done on cosines and sines (cos(a - b) = cos a cos b +
+// sin a sin b, sines from square roots): no trigonometric function per visit
+// (pbrt-v4's LightBounds::Importance works the same way). It agrees with the
+// reference to rounding (tested).
+struct ImportanceBounds {
+    Vec3 center{0.0f};
+    float radius = 0.0f;
+    Vec3 axis{0.0f, 0.0f, 1.0f};
+    float cosThetaO = -1.0f, sinThetaO = 0.0f, cosThetaE = 0.0f;
+    float power = 0.0f;
+    bool twoSided = false;
+
+    ImportanceBounds() = default;
+    explicit ImportanceBounds(const LightBounds& b);
+    float importance(const Vec3& p, const Vec3& n) const;
+};
+
 // The bounds of both groups: the box and power add up, the cones merge into
 // the smallest cone holding both (Conty Estevez and Kulla, algorithm 1).
 LightBounds unite(const LightBounds& a, const LightBounds& b);

@@ -45,7 +45,7 @@ public:
 
 private:
     struct Node {
-        LightBounds bounds;
+        ImportanceBounds bounds;  // what the walk evaluates
         uint32_t child[2] = {0, 0};  // interior nodes
         uint32_t light = 0;          // leaves: the light-set index
         uint32_t parent = UINT32_MAX;
@@ -54,9 +54,9 @@ private:
 
     uint32_t build(std::vector<LightBounds>& lights, std::vector<uint32_t>& index, size_t begin,
                    size_t end, uint32_t parent);
-    // The probability of going from `node` to child `which` at p, n; both 0
+    // The probabilities of going from `node` to its children at p, n; both 0
     // if neither child can reach p.
-    float childProbability(const Node& node, int which, const Vec3& p, const Vec3& n) const;
+    std::pair<float, float> childProbabilities(const Node& node, const Vec3& p, const Vec3& n) const;
 
     std::vector<Node> nodes_;       // nodes_[0] is the root
     std::vector<uint32_t> leafOf_;  // light-set index -> leaf node (UINT32_MAX: not held)
