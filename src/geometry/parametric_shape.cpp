@@ -70,6 +70,8 @@ ParametricShape::ParametricShape(ParametricSurfacePtr surface, const Mat4& objec
     toWorld_ = toWorld;
     toObject_ = glm::inverse(toWorld);
     normalToWorld_ = glm::transpose(glm::dmat3(toObject_));
+    // A flipped front: every normal the shape reports is negated.
+    if (options.flipNormals) normalToWorld_ = -normalToWorld_;
     if (!(options.relativeTolerance > 0.0 && options.relativeTolerance < 1e-2))
         fail("the tolerance must lie in (0, 0.01)");
 

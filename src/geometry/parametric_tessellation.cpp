@@ -137,12 +137,13 @@ Tessellation tessellateParametric(const ParametricSurface& surface, const Parame
 }
 
 TessellatedSurface::TessellatedSurface(ParametricSurfacePtr surface, Tessellation&& tessellation,
-                                       const Mat4& objectToWorld, ParametricNormals normals)
+                                       const Mat4& objectToWorld, ParametricNormals normals, bool flipNormals)
     : surface_(std::move(surface)),
       params_(std::move(tessellation.params)),
       patchFirstTriangle_(std::move(tessellation.patchFirstTriangle)),
       linearToWorld_(glm::dmat3(Mat3(objectToWorld))),
-      normalToWorld_(normalMatrix(objectToWorld)),
+      // A flipped front negates every exact normal.
+      normalToWorld_(flipNormals ? -normalMatrix(objectToWorld) : normalMatrix(objectToWorld)),
       normals_(normals) {}
 
 uint32_t TessellatedSurface::patchOf(uint32_t prim) const {

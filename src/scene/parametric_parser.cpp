@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "json_surface_parameters.h"
+#include "strahl/geometry/bilinear_patches.h"
 #include "strahl/geometry/formula.h"
 #include "strahl/geometry/parametric_kinds.h"
 #include "strahl/geometry/parametric_formula.h"
@@ -79,7 +80,7 @@ void parseRange(const JsonValue& v, const std::map<std::string, double>& paramet
 // The "type" names: the built-in kinds', then the surfaces built here.
 const std::vector<std::string_view>& surfaceTypes() {
     static const std::vector<std::string_view> types =
-        kindNamesThen(parametricKinds(), {"revolution", "bezier", "heightfield", "formula"});
+        kindNamesThen(parametricKinds(), {"revolution", "bezier", "bilinear", "heightfield", "formula"});
     return types;
 }
 
@@ -126,6 +127,34 @@ void parseSurface(const JsonValue& v, const std::filesystem::path& folder, Param
         const auto reverse = v.find("reverse");
         f.reverse = reverse && reverse->boolean();
         p.file = std::move(f);
+        return;
+    }
+    if (type == "bilinear") {
+        // {"positions": [[x, y, z], ...], "patches": [a, b, c, d, ...]}: four
+        // corners per patch, in order around it (bilinear_patches.h).
+        v.requireKeys({"type", "positions", "patches"});
+        const JsonValue list = v.get("positions");
+        std::vector<DVec3> positions;
+        positions.reserve(list.size());
+        for (size_t i = 0; i < list.size(); ++i) {
+            const JsonValue point = list.at(i);
+            if (!point.raw().is_array() || point.size() != 3) point.fail("expected [x, y, z]");
+            positions.emplace_back(exactNumber(point.at(0), {}), exactNumber(point.at(1), {}),
+                                   exactNumber(point.at(2), {}));
+        }
+        const JsonValue patches = v.get("patches");
+        if (patches.size() == 0 || patches.size() % 4 != 0)
+            patches.fail("expected four corner indices per patch, got ", patches.size(), " indices");
+        std::vector<uint32_t> corners;
+        corners.reserve(patches.size());
+        for (size_t i = 0; i < patches.size(); ++i) {
+            const JsonValue index = patches.at(i);
+            const uint64_t value = index.unsignedInteger(UINT32_MAX);
+            if (value >= positions.size())
+                index.fail("index ", value, " is beyond the ", positions.size(), " positions");
+            corners.push_back(static_cast<uint32_t>(value));
+        }
+        p.surface = build(v, [&] { return makeBilinearPatchSet(positions, corners, ""); });
         return;
     }
     if (type == "heightfield") {

@@ -14,7 +14,9 @@
 #include "imported_document.h"
 #include "mitsuba_named_materials.h"
 #include "spectrum_to_rgb.h"
+#include "strahl/core/bounds.h"
 #include "strahl/core/error.h"
+#include "strahl/geometry/bilinear_patches.h"
 #include "strahl/meshio/mesh_file.h"
 
 namespace strahl::scene_detail::pbrt {
@@ -839,8 +841,8 @@ private:
         twoSided = boolean(light, "twosided", false);
         if (const Parameter* f = light.params.find("filename")) bad(*f, "an image on an area light is not supported");
         if (const Parameter* power = typed(light, "power", {"float"})) {
-            // pbrt: the radiance that gives the shape this power (W), k_e = π
-            // (2π two-sided) × the area; an rgb radiance keeps its colour.
+            // pbrt: the radiance that gives each triangle this power (W), k_e
+            // = π (2π two-sided) × its area; an rgb radiance keeps its colour.
             const double area = shapeArea(shape);
             const double k = (twoSided ? 2.0 : 1.0) * glm::pi<double>() * area;
             if (!(area > 0.0)) unsupported(shape.entity, "power needs a shape with an area");
@@ -850,33 +852,114 @@ private:
         return color(radiance * scale);
     }
 
-    // The world-space area of a shape, for an area light's power.
+    // The area that an area light's power is divided by. pbrt-v4 makes one
+    // light per triangle, each normalised by its own area, so a mesh of n
+    // triangles given power P emits n P, each triangle with radiance
+    // P / (k area_i). strahl's emission is one radiance per material: the
+    // triangles must share one area (a quad's two halves, a regular grid),
+    // which is returned; a mesh whose triangle areas differ is refused.
     double shapeArea(const Shape& shape) const {
         const Entity& e = shape.entity;
-        if (e.type != "trianglemesh") unsupported(e, "an area light given by power needs a trianglemesh");
+        // The quadrics' areas are pbrt's Shape::Area(), in object space (the
+        // transform does not enter, as in pbrt).
+        const double pi = glm::pi<double>();
+        if (e.type == "sphere") {
+            const double r = number(e, "radius", 1.0);
+            return 4.0 * pi * r * r;
+        }
+        if (e.type == "disk") {
+            const double r = number(e, "radius", 1.0), ri = number(e, "innerradius", 0.0);
+            return pi * (r * r - ri * ri);
+        }
+        if (e.type == "cylinder") {
+            const double r = number(e, "radius", 1.0);
+            return 2.0 * pi * r * (number(e, "zmax", 1.0) - number(e, "zmin", -1.0));
+        }
+        if (e.type == "bilinearmesh") return patchArea(shape);
+        if (e.type != "trianglemesh")
+            unsupported(e, "an area light given by power needs a trianglemesh, bilinearmesh, sphere, disk or cylinder");
         const Parameter* P = e.params.find("P");
-        const Parameter* idx = e.params.find("indices");
         if (!P) return 0.0;
-        std::vector<uint32_t> indices;
-        const size_t points = P->numbers.size() / 3;
-        if (idx) {
-            for (double i : idx->numbers) {
-                if (!(i >= 0.0 && i < static_cast<double>(points)))
-                    bad(*idx, concat("index ", i, " is out of range (", points, " points)"));
-                indices.push_back(static_cast<uint32_t>(i));
-            }
-        } else {
-            indices = {0, 1, 2};
-        }
-        double area = 0.0;
+        const std::vector<uint32_t> indices = pointIndices(e, *P, 3, {0, 1, 2});
+        std::vector<double> areas;
         for (size_t i = 0; i + 2 < indices.size(); i += 3) {
-            auto at = [&](uint32_t k) {
-                if (3 * size_t(k) + 2 >= P->numbers.size()) unsupported(e, "P has fewer points than the indices use");
-                return transformPoint(shape.toWorld, {P->numbers[3 * k], P->numbers[3 * k + 1], P->numbers[3 * k + 2]});
-            };
-            area += 0.5 * glm::length(glm::cross(at(indices[i + 1]) - at(indices[i]), at(indices[i + 2]) - at(indices[i])));
+            const glm::dvec3 a = worldPoint(shape, *P, indices[i]), b = worldPoint(shape, *P, indices[i + 1]),
+                             c = worldPoint(shape, *P, indices[i + 2]);
+            areas.push_back(0.5 * glm::length(glm::cross(b - a, c - a)));
         }
-        return area;
+        return commonArea(e, areas, "triangles");
+    }
+
+    // The world-space area of a bilinear mesh's patches: the integral of
+    // |df/du x df/dv| by 8 x 8-point Gauss-Legendre quadrature (exact for
+    // flat patches up to rounding).
+    double patchArea(const Shape& shape) const {
+        const Entity& e = shape.entity;
+        const Parameter* P = e.params.find("P");
+        if (!P) return 0.0;
+        const std::vector<uint32_t> corners = pointIndices(e, *P, 4, {0, 1, 2, 3});
+        // Gauss-Legendre nodes on [0, 1] (8 points, exact for polynomials of
+        // degree 15; |df/du x df/dv| of a twisted patch is a smooth root).
+        static const double x[4] = {0.0198550717512319, 0.1016667612931866, 0.2372337950418355, 0.4082826787521751};
+        static const double w[4] = {0.0506142681451881, 0.1111905172266872, 0.1568533229389436, 0.1813418916891810};
+        std::vector<double> areas;
+        for (size_t p = 0; p + 3 < corners.size(); p += 4) {
+            glm::dvec3 q[4];  // p00, p10, p01, p11
+            for (size_t k = 0; k < 4; ++k) q[k] = worldPoint(shape, *P, corners[p + k]);
+            double area = 0.0;
+            for (int a = 0; a < 8; ++a) {
+                const double u = a < 4 ? x[a] : 1.0 - x[7 - a], wu = a < 4 ? w[a] : w[7 - a];
+                for (int b = 0; b < 8; ++b) {
+                    const double v = b < 4 ? x[b] : 1.0 - x[7 - b], wv = b < 4 ? w[b] : w[7 - b];
+                    const glm::dvec3 du = (1 - v) * (q[1] - q[0]) + v * (q[3] - q[2]);
+                    const glm::dvec3 dv = (1 - u) * (q[2] - q[0]) + u * (q[3] - q[1]);
+                    area += wu * wv * glm::length(glm::cross(du, dv));
+                }
+            }
+            areas.push_back(area);
+        }
+        return commonArea(e, areas, "patches");
+    }
+
+    // The one area every primitive of a shape has, which an area light's
+    // power is divided by: pbrt-v4 makes each triangle (patch) a light of
+    // that power, normalised by its own area. strahl's emission is one
+    // radiance per material, so the areas must agree; otherwise an error.
+    double commonArea(const Entity& e, const std::vector<double>& areas, const char* primitives) const {
+        if (areas.empty()) return 0.0;
+        const auto [smallest, largest] = std::minmax_element(areas.begin(), areas.end());
+        // 10^-4: the rounding of the points, not a difference anyone drew.
+        if (*largest > *smallest * (1.0 + 1e-4))
+            unsupported(e, concat("an area light given by power on ", primitives,
+                                  " that differ in area is not supported (pbrt gives each that power, with its "
+                                  "own radiance); give L instead"));
+        return *largest;
+    }
+
+    // The indices into P of a mesh-like shape, `perPrimitive` to a primitive,
+    // each checked; `single` when the shape gives none.
+    std::vector<uint32_t> pointIndices(const Entity& e, const Parameter& P, size_t perPrimitive,
+                                       std::vector<uint32_t> single) const {
+        const size_t points = P.numbers.size() / 3;
+        const Parameter* idx = e.params.find("indices");
+        if (!idx) {
+            if (points != single.size()) unsupported(e, "\"integer indices\" may only be left out for a single primitive");
+            return single;
+        }
+        if (idx->numbers.empty() || idx->numbers.size() % perPrimitive != 0)
+            bad(*idx, concat("expected ", perPrimitive, " indices per primitive"));
+        std::vector<uint32_t> indices;
+        indices.reserve(idx->numbers.size());
+        for (double i : idx->numbers) {
+            if (!(i >= 0.0 && i < static_cast<double>(points)))
+                bad(*idx, concat("index ", i, " is out of range (", points, " points)"));
+            indices.push_back(static_cast<uint32_t>(i));
+        }
+        return indices;
+    }
+
+    glm::dvec3 worldPoint(const Shape& shape, const Parameter& P, uint32_t i) const {
+        return transformPoint(shape.toWorld, {P.numbers[3 * size_t(i)], P.numbers[3 * size_t(i) + 1], P.numbers[3 * size_t(i) + 2]});
     }
 
     // --- shapes ---------------------------------------------------------
@@ -886,6 +969,8 @@ private:
         json shape;
         bool hasNormals = false;
         const bool emitter = s.areaLight >= 0;
+        const std::string materialName = material(s);
+        const bool textured = readsTextures(materialNamed(materials_, materialName));
         if (e.type == "trianglemesh") {
             shape = triangleMesh(e, hasNormals);
         } else if (e.type == "plymesh") {
@@ -906,10 +991,23 @@ private:
             local[3][3] = 1.0;
             // Exact as an implicit surface; an emitter (or one turned inside
             // out) becomes a fine mesh, which next-event estimation samples.
-            shape = emitter || s.reverseOrientation
-                        ? json{{"type", "parametric"}, {"surface", {{"type", "sphere"}, {"radius", 1}}},
-                               {"tessellation", {{"segments", {256, 128}}}}}
-                        : json{{"type", "implicit"}, {"surface", {{"type", "sphere"}, {"radius", 1}}}};
+            // A textured one is parametrised as pbrt parametrises it, so the
+            // textures land where pbrt puts them: u = phi / 2 pi, v = (pi -
+            // theta) / pi from the south pole (f's normal points outwards).
+            const json surface = textured ? json{{"type", "formula"},
+                                                 {"x", "sin(v)*cos(u)"},
+                                                 {"y", "sin(v)*sin(u)"},
+                                                 {"z", "-cos(v)"},
+                                                 {"u", {0, "2*pi"}},
+                                                 {"v", {0, "pi"}},
+                                                 {"periodic_u", true}}
+                                          : json{{"type", "sphere"}, {"radius", 1}};
+            if (emitter || s.reverseOrientation)
+                shape = {{"type", "parametric"}, {"surface", surface}, {"tessellation", {{"segments", {256, 128}}}}};
+            else if (textured)
+                shape = {{"type", "parametric"}, {"mode", "direct"}, {"surface", surface}};
+            else
+                shape = {{"type", "implicit"}, {"surface", surface}};
         } else if (e.type == "disk") {
             const double radius = number(e, "radius", 1.0), inner = number(e, "innerradius", 0.0);
             const double height = number(e, "height", 0.0);
@@ -941,26 +1039,83 @@ private:
             if (levels < 0 || levels > 8) unsupported(e, "levels must lie in 0 ... 8");
             param(e, "scheme");  // pbrt reads it and always subdivides by Loop's rules
             shape["subdivision"] = {{"scheme", "loop"}, {"levels", levels}};
-        } else if (e.type == "bilinearmesh" || e.type == "curve") {
-            unsupported(e, "this shape is not supported yet (bilinear patches and curves are issue 22)");
+        } else if (e.type == "bilinearmesh") {
+            shape = bilinearMesh(e, hasNormals);
+        } else if (e.type == "curve") {
+            unsupported(e, "this shape is not supported yet (curves are issue 22)");
         } else {
-            unsupported(e, "this shape is not supported (trianglemesh, plymesh, sphere, disk, cylinder)");
+            unsupported(e, "this shape is not supported (trianglemesh, plymesh, bilinearmesh, sphere, disk, "
+                           "cylinder, loopsubdiv)");
         }
         shape["transform"] = matrixTransform((world ? mirror_ : glm::dmat4(1.0)) * s.toWorld * local);
         // pbrt's front is the winding's side transformed, turned around by
         // ReverseOrientation, or with shading normals the side they point to
         // (pbrt ignores ReverseOrientation then); strahl keeps the winding's
         // side through any transform, mirrors included (docs/pbrt.md).
+        // (A parametric surface's front, ∂u f × ∂v f mapped as a normal, is
+        // kept through mirrors as a mesh's winding side is: tested on
+        // twisted and flat bilinear patches.)
         if (s.reverseOrientation && !hasNormals) shape["flip_normals"] = true;
-        shape["material"] = material(s);
-        // The analytic shapes' (u, v) are not pbrt's: no textures on them.
-        if ((e.type == "sphere" || e.type == "disk" || e.type == "cylinder") &&
-            readsTextures(materialNamed(materials_, shape["material"])))
-            unsupported(e, "a textured material on a " + e.type +
-                               " is not supported yet (its (u, v) are not pbrt's; use a mesh)");
+        // The analytic shapes' (u, v) are pbrt's: the disk's and the
+        // cylinder's normalised (phi, radius from the rim) and (phi, z) as
+        // strahl's, the textured sphere's by its formula above.
+        shape["material"] = materialName;
         shape["name"] = e.type + "@" + e.place.text();
         refuseUnread(e);
         into.push_back(std::move(shape));
+    }
+
+    // pbrt-v4's bilinear patches: four indices per patch, the corners p00,
+    // p10, p01, p11. Flat patches (all of them, within 10^-4 of their size)
+    // are two triangles each, (p00, p10, p11) and (p00, p11, p01): a mesh,
+    // which keeps pbrt's N and uv. Otherwise the exact surface, a parametric
+    // bilinear patch set in strahl's order around each patch, tessellated
+    // from one cell per patch until it is within 10^-3 of the mesh's size
+    // (docs/pbrt.md).
+    json bilinearMesh(const Entity& e, bool& hasNormals) const {
+        const Parameter* P = typed(e, "P", {"point3"});
+        if (!P) unsupported(e, "needs \"point3 P\"");
+        const size_t n = P->numbers.size() / 3;
+        typed(e, "indices", {"integer"});
+        const std::vector<uint32_t> corners = pointIndices(e, *P, 4, {0, 1, 2, 3});
+        auto point = [&](uint32_t i) { return DVec3(P->numbers[3 * i], P->numbers[3 * i + 1], P->numbers[3 * i + 2]); };
+        bool flat = true;
+        for (size_t p = 0; flat && p < corners.size(); p += 4)
+            flat = bilinearPatchIsFlat(point(corners[p]), point(corners[p + 1]), point(corners[p + 3]),
+                                       point(corners[p + 2]), 1e-4);
+        json positions = json::array();
+        positions.get_ref<json::array_t&>().reserve(n);
+        for (size_t i = 0; i < n; ++i)
+            positions.push_back({P->numbers[3 * i], P->numbers[3 * i + 1], P->numbers[3 * i + 2]});
+        const Parameter* N = typed(e, "N", {"normal"});
+        const Parameter* uv = typed(e, "uv", {"point2", "float"});
+        if (const Parameter* S = e.params.find("S")) bad(*S, "not a parameter of bilinearmesh");
+        param(e, "faceIndices");  // ptex face ids: no ptex textures here
+        if (flat) {
+            json indices = json::array();
+            for (size_t p = 0; p < corners.size(); p += 4) {
+                const uint32_t p00 = corners[p], p10 = corners[p + 1], p01 = corners[p + 2], p11 = corners[p + 3];
+                for (uint32_t i : {p00, p10, p11, p00, p11, p01}) indices.push_back(i);
+            }
+            json mesh = {{"type", "mesh"}, {"positions", std::move(positions)}, {"indices", std::move(indices)}};
+            vertexAttributes(N, uv, n, mesh, hasNormals);
+            return mesh;
+        }
+        if (N) bad(*N, "shading normals on twisted bilinear patches are not supported (their normals are exact)");
+        if (uv) bad(*uv, "\"uv\" on twisted bilinear patches is not supported (their (u, v) are the patch's own, pbrt's default)");
+        json order = json::array();
+        Bounds3 box;
+        for (size_t p = 0; p < corners.size(); p += 4) {
+            for (uint32_t i : {corners[p], corners[p + 1], corners[p + 3], corners[p + 2]}) {
+                order.push_back(i);
+                box.expand(Vec3(point(i)));
+            }
+        }
+        // The tessellation's chord error: 10^-3 of the patches' extent.
+        const double maxError = 1e-3 * std::max(static_cast<double>(glm::length(box.diagonal())), 1e-30);
+        return {{"type", "parametric"},
+                {"surface", {{"type", "bilinear"}, {"positions", std::move(positions)}, {"patches", std::move(order)}}},
+                {"tessellation", {{"segments", 1}, {"max_error", maxError}}}};
     }
 
     json triangleMesh(const Entity& e, bool& hasNormals) const {
@@ -989,7 +1144,15 @@ private:
         json mesh = {{"type", "mesh"}};
         mesh["positions"] = std::move(positions);
         mesh["indices"] = std::move(indices);
-        if (const Parameter* N = typed(e, "N", {"normal"})) {
+        vertexAttributes(typed(e, "N", {"normal"}), typed(e, "uv", {"point2", "float"}), n, mesh, hasNormals);
+        if (const Parameter* S = e.params.find("S")) bad(*S, "per-vertex tangents are not supported");
+        param(e, "faceIndices");  // ptex face ids: no ptex textures here
+        return mesh;
+    }
+
+    // A mesh's per-point normals N and texture coordinates uv, when given.
+    void vertexAttributes(const Parameter* N, const Parameter* uv, size_t n, json& mesh, bool& hasNormals) const {
+        if (N) {
             if (N->numbers.size() != 3 * n) bad(*N, "expected one normal per point");
             json normals = json::array();
             for (size_t i = 0; i < n; ++i)
@@ -997,15 +1160,12 @@ private:
             mesh["normals"] = std::move(normals);
             hasNormals = true;
         }
-        if (const Parameter* uv = typed(e, "uv", {"point2", "float"})) {
+        if (uv) {
             if (uv->numbers.size() != 2 * n) bad(*uv, "expected one (u, v) per point");
             json uvs = json::array();
             for (size_t i = 0; i < n; ++i) uvs.push_back({uv->numbers[2 * i], uv->numbers[2 * i + 1]});
             mesh["uvs"] = std::move(uvs);
         }
-        if (const Parameter* S = e.params.find("S")) bad(*S, "per-vertex tangents are not supported");
-        param(e, "faceIndices");  // ptex face ids: no ptex textures here
-        return mesh;
     }
 
     std::string group(const std::string& object) {

@@ -136,7 +136,8 @@ TessellatedShape tessellateShape(const SceneDesc& desc, const CameraDesc& camera
         Tessellation t = tessellateParametric(*surface, buildParametricGrid(*surface, grid), p.normals);
         TessellatedShape out;
         out.mesh.mesh = std::move(t.mesh);
-        out.surface = std::make_shared<TessellatedSurface>(surface, std::move(t), shape.transform, p.normals);
+        out.surface =
+            std::make_shared<TessellatedSurface>(surface, std::move(t), shape.transform, p.normals, shape.flipNormals);
         return out;
     } catch (const Error& e) {
         fail(shapeSource(desc, shape), ": ", e.what());
@@ -146,7 +147,9 @@ TessellatedShape tessellateShape(const SceneDesc& desc, const CameraDesc& camera
 std::shared_ptr<const UserShape> makeDirectShape(const SceneDesc& desc, const ShapeDesc& shape,
                                                  const ParametricSurfacePtr& surface) {
     try {
-        return std::make_shared<ParametricShape>(surface, shape.transform, shape.parametric.direct);
+        ParametricShapeOptions options = shape.parametric.direct;
+        options.flipNormals = shape.flipNormals;
+        return std::make_shared<ParametricShape>(surface, shape.transform, options);
     } catch (const Error& e) {
         fail(shapeSource(desc, shape), ": ", e.what());
     }

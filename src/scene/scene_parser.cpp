@@ -195,10 +195,11 @@ ShapeDesc parseShape(const JsonValue& v, const ShapeContext& context) {
         s.name = s.where;
     } else if (type == "parametric") {
         v.requireKeys({"type", "name", "material", "transform", "surface", "mode", "tessellation",
-                       "direct"});
+                       "direct", "flip_normals"});
         s.kind = ShapeKind::Parametric;
         s.parametric = scene_detail::parseParametricShape(v, folder);
         s.name = s.where;
+        if (auto flip = v.find("flip_normals")) s.flipNormals = flip->boolean();
     } else {
         v.requireKeys({"type", "name", "file", "positions", "indices", "normals", "uvs",
                        "material", "transform", "flip_normals", "shape_index", "subdivision"});

@@ -7,6 +7,8 @@
 
 #include <string>
 
+#include "geometry/ray_probes.h"
+#include "strahl/core/ray.h"
 #include "strahl/geometry/parametric_shape.h"
 #include "strahl/scene/scene_builder.h"
 #include "strahl/scene/scene_desc.h"
@@ -50,6 +52,9 @@ const char* kSurfaces[] = {
     R"J({"type": "formula", "x": "(R + r*cos(v))*cos(u)", "y": "(R + r*cos(v))*sin(u)",
         "z": "r*sin(v)", "u": [0, "2*pi"], "v": [0, "2*pi"], "periodic_u": true,
         "periodic_v": true, "parameters": {"R": 1, "r": 0.3}})J",
+    // A saddle and a flat patch beside it, sharing an edge.
+    R"({"type": "bilinear", "positions": [[-1, -1, 1], [1, -1, -1], [1, 1, 1], [-1, 1, -1], [3, -1, -1], [3, 1, 1]],
+        "patches": [0, 1, 2, 3, 1, 4, 5, 2]})",
 };
 
 TEST(ParametricScene, EverySurfaceBuildsInBothModes) {
@@ -126,6 +131,46 @@ TEST(ParametricScene, BadSurfacesNameTheirPlace) {
                          "/shapes/0/surface/file"));
     EXPECT_TRUE(contains(errorOf(R"({"type": "heightfield", "image": "data/teapot.bpt"})"),
                          "/shapes/0/surface/image"));
+    EXPECT_TRUE(contains(errorOf(R"({"type": "bilinear", "positions": [[0, 0, 0], [1, 0, 0], [1, 1, 0]],
+                                    "patches": [0, 1, 2, 3]})"),
+                         "/shapes/0/surface/patches/3: index 3 is beyond the 3 positions"));
+    EXPECT_TRUE(contains(errorOf(R"({"type": "bilinear", "positions": [[0, 0, 0], [1, 0, 0], [1, 1, 0]],
+                                    "patches": [0, 1, 2]})"),
+                         "/shapes/0/surface/patches: expected four corner indices per patch, got 3 indices"));
+    EXPECT_TRUE(contains(errorOf(R"({"type": "bilinear", "positions": [[0, 0], [1, 0, 0], [1, 1, 0]],
+                                    "patches": [0, 1, 2, 0]})"),
+                         "/shapes/0/surface/positions/0: expected [x, y, z]"));
+}
+
+TEST(ParametricScene, FlipNormalsTurnsTheFrontAroundInBothModes) {
+    const char* sphere = R"({"type": "sphere", "radius": 1})";
+    // Tessellated: the triangles' winding and the exact normals both turn.
+    const auto tessellatedNormal = [&](bool flip) {
+        const SceneDesc desc =
+            parse(sceneWith(parametric(sphere, flip ? R"("flip_normals": true)" : R"("flip_normals": false)")));
+        const World world = buildWorld(desc, BuildOptions{});
+        const SceneShape& shape = world.shapes[0];
+        const SurfaceInteraction si = shape.tessellated->interaction(shape.mesh, 0, 0.3f, 0.3f);
+        EXPECT_GT(glm::dot(si.Ng, si.Ns), 0.0f);
+        return glm::dot(si.Ns, si.p);  // > 0: outwards
+    };
+    EXPECT_GT(tessellatedNormal(false), 0.0f);
+    EXPECT_LT(tessellatedNormal(true), 0.0f);
+    // Direct: the reported geometric normal turns.
+    const auto directNormal = [&](bool flip) {
+        const SceneDesc desc = parse(sceneWith(parametric(
+            sphere, std::string(R"("mode": "direct", "flip_normals": )") + (flip ? "true" : "false"))));
+        const World world = buildWorld(desc, BuildOptions{});
+        const UserShape& user = *world.shapes[0].user;
+        Ray ray;
+        ray.origin = Vec3(0.1f, 0.2f, 5.0f);
+        ray.dir = Vec3(0.0f, 0.0f, -1.0f);
+        const Hit best = nearestHit(user, ray);
+        EXPECT_TRUE(best.valid());
+        return user.interaction(ray, best).Ng.z;  // the hit is on the near side, z > 0
+    };
+    EXPECT_GT(directNormal(false), 0.0f);
+    EXPECT_LT(directNormal(true), 0.0f);
 }
 
 TEST(ParametricScene, MalformedPatchFilesNameFileAndLine) {

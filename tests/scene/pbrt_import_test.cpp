@@ -22,6 +22,7 @@
 #include "strahl/scene/scene_builder.h"
 #include "strahl/scene/scene_desc.h"
 #include "strahl/scene/scene_document.h"
+#include "geometry/ray_probes.h"
 #include "test_support.h"
 
 namespace strahl {
@@ -187,6 +188,123 @@ TEST(PbrtImport, CoatedConductorKeepsBothLayersAndTheLayersThickness) {
                 HasSubstr("an anisotropic coated conductor is not supported"));
 }
 
+TEST(PbrtImport, BilinearMeshesAreTrianglesWhenFlatAndTheExactSurfaceWhenTwisted) {
+    // pbrt's corner order per patch is p00, p10, p01, p11.
+    const json flat = document(scene(
+        "Shape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 0] \"point2 uv\" [0 0 1 0 0 1 1 1]\n"));
+    const json& mesh = flat["shapes"][0];
+    EXPECT_EQ(mesh["type"], "mesh");
+    EXPECT_EQ(mesh["indices"], json({0, 1, 3, 0, 3, 2}));  // (p00, p10, p11), (p00, p11, p01)
+    EXPECT_EQ(mesh["uvs"].size(), 4u);
+
+    const std::string twistedText = scene("Shape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 1]\n");
+    const json twisted = document(twistedText);
+    const json& surface = twisted["shapes"][0];
+    EXPECT_EQ(surface["type"], "parametric");
+    EXPECT_EQ(surface["surface"]["type"], "bilinear");
+    EXPECT_EQ(surface["surface"]["patches"], json({0, 1, 3, 2}));  // strahl's order around the patch
+    EXPECT_EQ(surface["tessellation"]["segments"], 1);
+    EXPECT_NO_THROW(buildWorld(SceneDocument::fromText(twistedText, "scene.pbrt").parse(), BuildOptions{}));
+
+    EXPECT_THAT(errorOf(scene("Shape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 1] "
+                              "\"point2 uv\" [0 0 1 0 0 1 1 1]\n")),
+                HasSubstr("\"uv\" on twisted bilinear patches is not supported"));
+    EXPECT_THAT(errorOf(scene("Shape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 1] "
+                              "\"integer indices\" [0 1 2]\n")),
+                HasSubstr("expected 4 indices per primitive"));
+}
+
+TEST(PbrtImport, TwistedAndFlatBilinearPatchesFaceTheSameWay) {
+    // A flat patch (a mesh) and a slightly twisted one (a parametric surface)
+    // with the same corners in the same order face the same side, with and
+    // without ReverseOrientation, through the importer's mirror.
+    for (const std::string reverse : {"", "ReverseOrientation\n"}) {
+        const std::string text = scene(
+            "AttributeBegin\n" + reverse +
+            "Shape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 0]\n"
+            "Shape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 0.05]\nAttributeEnd\n");
+        const World world = buildWorld(SceneDocument::fromText(text, "scene.pbrt").parse(), BuildOptions{});
+        ASSERT_EQ(world.shapes.size(), 2u);
+        ASSERT_EQ(world.shapes[1].tessellated != nullptr, true);
+        const Vec3 flatNormal = triangleInteraction(world.shapes[0].mesh, 0, 0.2f, 0.2f).Ng;
+        const SurfaceInteraction twisted = world.shapes[1].tessellated->interaction(world.shapes[1].mesh, 0, 0.2f, 0.2f);
+        EXPECT_GT(glm::dot(flatNormal, twisted.Ns), 0.9f) << reverse;
+        EXPECT_GT(glm::dot(flatNormal, twisted.Ng), 0.9f) << reverse;
+    }
+}
+
+TEST(PbrtImport, AReversedSphereIsAnInsideOutMesh) {
+    // Regression: ReverseOrientation on a sphere made a parametric shape with
+    // "flip_normals", which the scene format refused.
+    const std::string text = scene("AttributeBegin\nReverseOrientation\nShape \"sphere\" \"float radius\" 1\nAttributeEnd\n");
+    const json doc = document(text);
+    EXPECT_EQ(doc["shapes"][0]["type"], "parametric");
+    EXPECT_EQ(doc["shapes"][0]["flip_normals"], true);
+    const World world = buildWorld(SceneDocument::fromText(text, "scene.pbrt").parse(), BuildOptions{});
+    const SceneShape& sphere = world.shapes[0];
+    const SurfaceInteraction si = sphere.tessellated->interaction(sphere.mesh, 0, 0.3f, 0.3f);
+    EXPECT_LT(glm::dot(si.Ns, si.p), 0.0f);  // facing the centre
+}
+
+TEST(PbrtImport, TexturedQuadricsHavePbrtsUv) {
+    // pbrt's (u, v): sphere (phi / 2 pi, (pi - theta) / pi), disk (phi / 2 pi,
+    // (r_max - r) / (r_max - r_i)), cylinder (phi / 2 pi, (z - z_min) /
+    // (z_max - z_min)), phi = atan2(y, x) in [0, 2 pi), in object space. The
+    // importer mirrors the world in x: object (x, y, z) is world (-x, y, z).
+    const std::string text = scene(
+        "Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"" + (test::sourceDir() / "tests/golden/parametric.exr").string() + "\"\n"
+        "Material \"diffuse\" \"texture reflectance\" \"t\"\n"
+        "AttributeBegin\nTranslate 0 0 -3\nShape \"sphere\" \"float radius\" 2\nAttributeEnd\n"
+        "AttributeBegin\nTranslate 0 0 2\nShape \"disk\" \"float radius\" 1 \"float innerradius\" 0.25\nAttributeEnd\n"
+        "AttributeBegin\nTranslate 4 0 0\nShape \"cylinder\" \"float radius\" 0.5 \"float zmin\" 0 \"float zmax\" 2\nAttributeEnd\n");
+    const World world = buildWorld(SceneDocument::fromText(text, "scene.pbrt").parse(), BuildOptions{});
+    ASSERT_EQ(world.shapes.size(), 3u);
+    const auto phiOf = [](double x, double y) {
+        const double phi = std::atan2(y, x);
+        return phi < 0.0 ? phi + 2.0 * M_PI : phi;
+    };
+    const auto expectUv = [](const SurfaceInteraction& si, double u, double v, const char* what) {
+        // Away from the seam at phi = 0, where u wraps.
+        if (u < 0.01 || u > 0.99) return;
+        EXPECT_NEAR(si.uv.x, u, 2e-3) << what;
+        EXPECT_NEAR(si.uv.y, v, 2e-3) << what;
+    };
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> spread(-1.0f, 1.0f);
+    int checked = 0;
+    for (int i = 0; i < 200; ++i) {
+        // The sphere, centred at world (0, 0, -3), from the camera's side.
+        Ray ray;
+        ray.origin = Vec3(0.0f, 0.0f, 5.0f);
+        ray.dir = glm::normalize(Vec3(1.6f * spread(rng), 1.6f * spread(rng), -8.0f));
+        const Hit hit = nearestHit(*world.shapes[0].user, ray);
+        if (!hit.valid()) continue;
+        const SurfaceInteraction si = world.shapes[0].user->interaction(ray, hit);
+        const glm::dvec3 o = glm::dvec3(-si.p.x, si.p.y, si.p.z + 3.0f) / 2.0;
+        expectUv(si, phiOf(o.x, o.y) / (2.0 * M_PI), (M_PI - std::acos(std::clamp(o.z, -1.0, 1.0))) / M_PI, "sphere");
+        ++checked;
+    }
+    const SceneShape& disk = world.shapes[1];
+    for (uint32_t prim = 0; prim < disk.mesh.triangleCount(); prim += 7) {
+        const SurfaceInteraction si = disk.tessellated->interaction(disk.mesh, prim, 0.3f, 0.3f);
+        const double r = std::hypot(si.p.x, si.p.y);
+        expectUv(si, phiOf(-si.p.x, si.p.y) / (2.0 * M_PI), (1.0 - r) / 0.75, "disk");
+        ++checked;
+    }
+    for (int i = 0; i < 100; ++i) {
+        // The open cylinder, its axis at world x = -4 (the mirror), seen from the axis.
+        Ray ray;
+        ray.origin = Vec3(-4.0f, 0.0f, 1.0f + 0.8f * spread(rng));
+        ray.dir = glm::normalize(Vec3(spread(rng), spread(rng), 0.0f) + Vec3(1e-3f, 0.0f, 0.0f));
+        const Hit hit = nearestHit(*world.shapes[2].user, ray);
+        if (!hit.valid()) continue;
+        const SurfaceInteraction si = world.shapes[2].user->interaction(ray, hit);
+        expectUv(si, phiOf(-si.p.x - 4.0f, si.p.y) / (2.0 * M_PI), si.p.z / 2.0, "cylinder");
+        ++checked;
+    }
+    EXPECT_GT(checked, 200);
+}
+
 TEST(PbrtImport, NamedMaterialsMayComeLaterAndObjectsAreGroups) {
     const json doc = document(scene(
         "NamedMaterial \"late\"\n"
@@ -248,6 +366,30 @@ TEST(PbrtImport, AreaLightsAreTheEmissionOfTheShapesMaterial) {
     EXPECT_EQ(doc["shapes"][0]["flip_normals"], true);
     EXPECT_FALSE(doc["shapes"][1].contains("flip_normals"));
     EXPECT_EQ(doc["shapes"][1]["material"], "pbrt-default");
+}
+
+TEST(PbrtImport, AnAreaLightsPowerIsEveryTrianglesAsInPbrt) {
+    // pbrt-v4 makes each triangle a light normalised by its own area: a unit
+    // quad (two triangles of area 1/2) given power pi has radiance
+    // pi / (pi x 1/2) = 2, not pi / (pi x 1) = 1.
+    const std::string quad =
+        "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 1 1 0 0 1 0] \"integer indices\" [0 1 2 0 2 3]\n";
+    const json doc = document(scene("AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [1 1 1] \"float power\" " +
+                                    std::to_string(M_PI) + "\n" + quad + "AttributeEnd\n"));
+    EXPECT_NEAR(doc["materials"][0]["emission"].get<double>(), 2.0, 1e-5);
+    // Triangles of different areas would each get their own radiance.
+    EXPECT_THAT(errorOf(scene("AttributeBegin\nAreaLightSource \"diffuse\" \"float power\" 10\n"
+                              "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 1 1 0 0 3 0] "
+                              "\"integer indices\" [0 1 2 0 2 3]\nAttributeEnd\n")),
+                HasSubstr("power on triangles that differ in area is not supported"));
+    // A sphere's area is pbrt's 4 pi r^2, in object space; a patch's is its
+    // surface integral (a flat unit square: 1).
+    const json sphere = document(scene("AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [1 1 1] \"float power\" 8\n"
+                                       "Scale 5 5 5\nShape \"sphere\" \"float radius\" 2\nAttributeEnd\n"));
+    EXPECT_NEAR(sphere["materials"][0]["emission"].get<double>(), 8.0 / (M_PI * 4.0 * M_PI * 4.0), 1e-6);
+    const json patch = document(scene("AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [1 1 1] \"float power\" 3\n"
+                                      "Shape \"bilinearmesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0 1 1 0]\nAttributeEnd\n"));
+    EXPECT_NEAR(patch["materials"][0]["emission"].get<double>(), 3.0 / M_PI, 1e-5);
 }
 
 TEST(PbrtImport, CheckerboardsKeepPbrtsParity) {

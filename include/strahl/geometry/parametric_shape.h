@@ -50,6 +50,8 @@ struct ParametricShapeOptions {
     int maxSegments = 256;    // per patch and direction
     // Newton's convergence bound on ‖F‖ as a fraction of the surface's extent.
     double relativeTolerance = 1e-9;
+    // The front is the other side: the normal is −∂u f × ∂v f.
+    bool flipNormals = false;
 };
 
 class ParametricShape final : public UserShape {

@@ -45,8 +45,10 @@ class TessellatedSurface {
 public:
     // `tessellation`'s mesh goes to the caller (the scene keeps it in world
     // space for the accelerator); this keeps the parameters.
+    // flipNormals: the front is the other side (the mesh's winding must be
+    // turned around to match: TriangleMesh::flipOrientation).
     TessellatedSurface(ParametricSurfacePtr surface, Tessellation&& tessellation,
-                       const Mat4& objectToWorld, ParametricNormals normals);
+                       const Mat4& objectToWorld, ParametricNormals normals, bool flipNormals = false);
 
     // The interaction on triangle `prim` of `worldMesh` (the tessellation's
     // mesh, transformed to world space) at Embree barycentrics (b1, b2): p and Ng

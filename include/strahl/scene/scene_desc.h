@@ -170,7 +170,7 @@ struct ShapeDesc {
     // none (flat), or the file's and else computed (smooth).
     enum class FileNormals { AsGiven, Flat, Smooth };
     FileNormals fileNormals = FileNormals::AsGiven;
-    bool flipNormals = false;  // mesh: turn the front (winding and normals) around
+    bool flipNormals = false;  // mesh, parametric: turn the front (winding and normals) around
     uint32_t shapeIndex = 0;   // mesh file: which mesh of a multi-mesh file (.serialized)
     TriangleMesh inlineMesh;         // used when file is empty
     ImplicitSurfacePtr implicitSurface;    // kind == Implicit: f, compiled at parse time
