@@ -67,18 +67,10 @@ float escapeAfterOneBounce(const MicrofacetDistribution& metal, float mu, float 
                            const std::vector<QuadratureNode>& nodes) {
     const Vec3 wo(std::sqrt(1.0f - mu * mu), 0.0f, mu);
     double sum = 0.0;
-    for (const QuadratureNode& a : nodes) {
-        for (const QuadratureNode& b : nodes) {
-            const Vec3 m = metal.sampleNormal(wo, Vec2(float(a.x), float(b.x)));
-            const float cosOm = glm::dot(wo, m);
-            const float pdf = metal.normalPdf(wo, m);
-            if (cosOm <= 0.0f || !(pdf > 0.0f)) continue;
-            const Vec3 wi = reflectDir(wo, m);
-            if (wi.z <= 0.0f) continue;
-            sum += a.w * b.w * metal.d(m) * cosOm / (mu * pdf) * metal.g(wo, wi) *
-                   transmittanceFromInside(wi.z, coatEta);
-        }
-    }
+    forVisibleNormals(metal, wo, nodes, [&](const Vec3& m, float, double weight) {
+        const Vec3 wi = reflectDir(wo, m);
+        if (wi.z > 0.0f) sum += weight * metal.g(wo, wi) * transmittanceFromInside(wi.z, coatEta);
+    });
     return float(sum);
 }
 

@@ -1,10 +1,12 @@
 #pragma once
 // Internal to the bsdf module: Gauss-Legendre quadrature on [0, 1], for the
 // tables that integrate a microfacet lobe over its sampled normals
-// (rough_coat.cpp, coated_base.cpp).
+// (rough_coat.cpp, coated_base.cpp), and the loop over those normals.
 
 #include <cmath>
 #include <vector>
+
+#include "strahl/bsdf/microfacet.h"
 
 namespace strahl {
 
@@ -33,6 +35,26 @@ inline std::vector<QuadratureNode> gaussLegendre01(int n) {
         nodes[i] = {0.5 * (1.0 - x), 1.0 / ((1.0 - x * x) * dp * dp)};  // weight 2/.. halved
     }
     return nodes;
+}
+
+// An integral over the microfacet normals m that `dist` shows to wo (wo.z =
+// cos theta_o > 0): calls visit(m, cos(wo, m), weight) at the nodes x nodes
+// points of the distribution's normal sampling, with weight = w_a w_b D(m)
+// (wo.m) / (cos theta_o pdf(m)): the sampling's Jacobian, so that the sum
+// of weight g(m) is the integral of D(m) (wo.m) / cos theta_o g(m) dm (a
+// lobe's albedo, given g = G F). Normals facing away from wo are skipped.
+template <typename Visit>
+void forVisibleNormals(const MicrofacetDistribution& dist, const Vec3& wo,
+                       const std::vector<QuadratureNode>& nodes, Visit&& visit) {
+    for (const QuadratureNode& a : nodes) {
+        for (const QuadratureNode& b : nodes) {
+            const Vec3 m = dist.sampleNormal(wo, Vec2(float(a.x), float(b.x)));
+            const float cosOm = glm::dot(wo, m);
+            const float pdf = dist.normalPdf(wo, m);
+            if (cosOm <= 0.0f || !(pdf > 0.0f)) continue;
+            visit(m, cosOm, a.w * b.w * dist.d(m) * cosOm / (wo.z * pdf));
+        }
+    }
 }
 
 }  // namespace strahl

@@ -56,22 +56,15 @@ InterfaceAlbedo roughInterfaceAlbedo(const MicrofacetDistribution& dist, float c
     // and m is drawn with density normalPdf(wo, m).
     const std::vector<QuadratureNode> q = gaussLegendre01(nodes);
     double r = 0.0, t = 0.0;
-    for (const QuadratureNode& a : q) {
-        for (const QuadratureNode& b : q) {
-            const Vec3 m = dist.sampleNormal(wo, Vec2(float(a.x), float(b.x)));
-            const float cosOm = glm::dot(wo, m);
-            const float pdf = dist.normalPdf(wo, m);
-            if (cosOm <= 0.0f || !(pdf > 0.0f)) continue;
-            const double weight = a.w * b.w * dist.d(m) * cosOm / (mu * pdf);
-            const float fresnel = fresnelDielectric(cosOm, eta);
-            const Vec3 reflected = reflectDir(wo, m);
-            if (reflected.z > 0.0f) r += weight * fresnel * dist.g(wo, reflected);
-            Vec3 refracted;
-            float etap;
-            if (fresnel < 1.0f && refractDir(wo, m, eta, refracted, etap) && refracted.z < 0.0f)
-                t += weight * (1.0f - fresnel) * dist.g(wo, refracted);
-        }
-    }
+    forVisibleNormals(dist, wo, q, [&](const Vec3& m, float cosOm, double weight) {
+        const float fresnel = fresnelDielectric(cosOm, eta);
+        const Vec3 reflected = reflectDir(wo, m);
+        if (reflected.z > 0.0f) r += weight * fresnel * dist.g(wo, reflected);
+        Vec3 refracted;
+        float etap;
+        if (fresnel < 1.0f && refractDir(wo, m, eta, refracted, etap) && refracted.z < 0.0f)
+            t += weight * (1.0f - fresnel) * dist.g(wo, refracted);
+    });
     return {float(r), float(t)};
 }
 
