@@ -18,6 +18,10 @@
 //  - A mesh with a Cutout gets it as its user data and one filter function
 //    for both intersection and occlusion, which rejects candidate hits on its
 //    holes (Embree then keeps traversing).
+//  - A CurveSet is the one user shape Embree does not call back for: it
+//    becomes Embree's own curve geometry of its type and basis, its control
+//    points (x, y, z, r) and segment starts shared as they are. Its
+//    intersect() is the naive tracer's independent reference.
 //  - Vertex and index buffers are shared with Embree (zero copy) when the
 //    mesh's position vector has the spare element Embree's 16-byte vertex loads
 //    need (TriangleMesh::reservePadding); otherwise they are copied once into an
@@ -37,6 +41,7 @@
 #include "strahl/accel/accel.h"
 #include "strahl/core/error.h"
 #include "strahl/core/transform.h"
+#include "strahl/geometry/curve_set.h"
 
 namespace strahl {
 
@@ -162,8 +167,39 @@ private:
     // The Embree geometry of one shape, not yet committed or attached. `geomID`
     // only names the shape in errors.
     RTCGeometry newShapeGeometry(const ShapeRef& shape, unsigned geomID) {
-        return shape.mesh ? newMeshGeometry(*shape.mesh, shape.cutout)
-                          : newUserGeometry(*shape.user, geomID);
+        if (shape.mesh) return newMeshGeometry(*shape.mesh, shape.cutout);
+        if (const CurveSet* curves = shape.user->asCurves()) return newCurveGeometry(*curves);
+        return newUserGeometry(*shape.user, geomID);
+    }
+
+    static RTCGeometryType curveGeometryType(CurveType type, CurveBasis basis) {
+        const bool round = type == CurveType::Round;
+        switch (basis) {
+            case CurveBasis::Linear:
+                return round ? RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE : RTC_GEOMETRY_TYPE_FLAT_LINEAR_CURVE;
+            case CurveBasis::Bezier:
+                return round ? RTC_GEOMETRY_TYPE_ROUND_BEZIER_CURVE : RTC_GEOMETRY_TYPE_FLAT_BEZIER_CURVE;
+            case CurveBasis::BSpline:
+                return round ? RTC_GEOMETRY_TYPE_ROUND_BSPLINE_CURVE : RTC_GEOMETRY_TYPE_FLAT_BSPLINE_CURVE;
+            case CurveBasis::CatmullRom:
+                return round ? RTC_GEOMETRY_TYPE_ROUND_CATMULL_ROM_CURVE : RTC_GEOMETRY_TYPE_FLAT_CATMULL_ROM_CURVE;
+        }
+        fail("invalid curve basis ", static_cast<int>(basis));
+    }
+
+    RTCGeometry newCurveGeometry(const CurveSet& curves) {
+        static_assert(sizeof(Vec4) == 4 * sizeof(float), "control points are shared as RTC_FORMAT_FLOAT4");
+        const CurveSetDesc& desc = curves.desc();
+        RTCGeometry geom = rtcNewGeometry(device(), curveGeometryType(desc.type, desc.basis));
+        rtcSetGeometryBuildQuality(geom, quality());
+        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, desc.points.data(), 0,
+                                   sizeof(Vec4), desc.points.size());
+        // Segment starts; for the linear basis Embree derives which segments
+        // join their left neighbour from them (CurveSet::hasLeftNeighbour).
+        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, desc.segments.data(), 0,
+                                   sizeof(uint32_t), desc.segments.size());
+        if (desc.type == CurveType::Flat) rtcSetGeometryTessellationRate(geom, float(desc.flatSegments));
+        return geom;
     }
 
     RTCGeometry newMeshGeometry(const TriangleMesh& mesh, const Cutout* cutout) {

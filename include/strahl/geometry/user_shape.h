@@ -5,6 +5,9 @@
 // primitives with conservative boxes: Embree through one generic user-geometry
 // adapter (accel/), the naive tracer (reference/) by calling intersect() on
 // every primitive. Both call exactly this code, so they agree by construction.
+// The one exception is a CurveSet (curve_set.h): Embree intersects curves with
+// its own native curve geometry, and intersect() is then the independent
+// reference the naive tracer uses and the agreement tests compare against.
 //
 // Two-phase intersection: intersect() fills only the preliminary Hit (t, u, v,
 // Ng); shading later asks interaction() for the full SurfaceInteraction of the
@@ -28,6 +31,8 @@
 #include "strahl/geometry/triangle_mesh.h"
 
 namespace strahl {
+
+class CurveSet;
 
 class UserShape {
 public:
@@ -58,6 +63,9 @@ public:
     virtual const char* primitiveNoun() const { return "primitives"; }
     // Bytes held by the shape (its own tables, not counting the accelerator).
     virtual size_t memoryBytes() const = 0;
+    // The curves, if this shape is a CurveSet (which Embree intersects
+    // natively); null for every other shape.
+    virtual const CurveSet* asCurves() const { return nullptr; }
 };
 
 // One entry of the list an accelerator is built over: exactly one of mesh and
