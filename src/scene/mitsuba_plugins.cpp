@@ -731,6 +731,14 @@ private:
             const json surface = {{"type", "cylinder"}, {"radius", radius}, {"z_min", 0}, {"z_max", length}};
             shape = emitter ? analyticMesh(surface, {256, 1})
                             : json{{"type", "parametric"}, {"mode", "direct"}, {"surface", surface}};
+        } else if (s.type == "bsplinecurve" || s.type == "linearcurve") {
+            allowOnly(s, {"filename", "to_world"});
+            // The strand file as Mitsuba reads it: cubic B-spline or linear
+            // round curves, to_world moving the points but not the radii.
+            shape = {{"type", "curves"},
+                     {"file", file(s, "curve file")},
+                     {"basis", s.type == "bsplinecurve" ? "bspline" : "linear"},
+                     {"transform_radius", false}};
         } else if (s.type == "instance") {
             allowOnly(s, {"to_world"});
             const Child* group = child(s, "shape");
@@ -749,7 +757,8 @@ private:
             shape["material"] = material(bsdf ? bsdf->object.get() : nullptr,
                                          emitter ? emitter->object.get() : nullptr);
         // The analytic shapes' (u, v) are not Mitsuba's uv: no textures on them.
-        const bool analytic = s.type == "sphere" || s.type == "disk" || s.type == "cylinder";
+        const bool analytic = s.type == "sphere" || s.type == "disk" || s.type == "cylinder" ||
+                              s.type == "bsplinecurve" || s.type == "linearcurve";
         if (analytic && shape.contains("material") && readsTextures(materialNamed(materials_, shape["material"])))
             unsupported(s, "a textured material on a Mitsuba " + s.type +
                                " is not supported (its uv is not Mitsuba's; use a mesh)");

@@ -1042,7 +1042,7 @@ private:
         } else if (e.type == "bilinearmesh") {
             shape = bilinearMesh(e, hasNormals);
         } else if (e.type == "curve") {
-            unsupported(e, "this shape is not supported yet (curves are issue 22)");
+            shape = curve(e);
         } else {
             unsupported(e, "this shape is not supported (trianglemesh, plymesh, bilinearmesh, sphere, disk, "
                            "cylinder, loopsubdiv)");
@@ -1055,7 +1055,7 @@ private:
         // (A parametric surface's front, ∂u f × ∂v f mapped as a normal, is
         // kept through mirrors as a mesh's winding side is: tested on
         // twisted and flat bilinear patches.)
-        if (s.reverseOrientation && !hasNormals) shape["flip_normals"] = true;
+        if (s.reverseOrientation && !hasNormals && e.type != "curve") shape["flip_normals"] = true;  // a tube has no front
         // The analytic shapes' (u, v) are pbrt's: the disk's and the
         // cylinder's normalised (phi, radius from the rim) and (phi, z) as
         // strahl's, the textured sphere's by its formula above.
@@ -1063,6 +1063,68 @@ private:
         shape["name"] = e.type + "@" + e.place.text();
         refuseUnread(e);
         into.push_back(std::move(shape));
+    }
+
+    // pbrt-v4's curve: one strand of Bézier or B-spline segments of degree 2
+    // or 3, its width running linearly from width0 to width1 along the whole
+    // curve. It becomes strahl's cubic Bézier curve exactly: B-spline
+    // segments are converted to their Bézier points, quadratics are degree
+    // elevated, and the radius control values of each segment are those of
+    // the linear width (a Bézier reproduces a linear function). pbrt's
+    // "cylinder" type, a ribbon shaded as a tube, becomes a true round tube;
+    // "flat" a ray-facing ribbon; "ribbon" (oriented by N) is refused.
+    json curve(const Entity& e) const {
+        const Parameter* P = typed(e, "P", {"point3"});
+        if (!P || P->numbers.size() % 3 != 0) unsupported(e, "needs \"point3 P\"");
+        const size_t n = P->numbers.size() / 3;
+        const std::string basis = text(e, "basis", "bezier");
+        if (basis != "bezier" && basis != "bspline") bad(*param(e, "basis"), "expected \"bezier\" or \"bspline\"");
+        const int degree = integer(e, "degree", 3);
+        if (degree != 2 && degree != 3) bad(*param(e, "degree"), "expected 2 or 3");
+        const std::string type = text(e, "type", "flat");
+        if (type == "ribbon") unsupported(e, "curves of type \"ribbon\" (oriented by N) are not supported yet");
+        if (type != "flat" && type != "cylinder") bad(*param(e, "type"), "expected \"flat\", \"cylinder\" or \"ribbon\"");
+        if (const Parameter* N = e.params.find("N")) bad(*N, "only for curves of type \"ribbon\"");
+        const double width = number(e, "width", 1.0);
+        const double w0 = number(e, "width0", width), w1 = number(e, "width1", width);
+        if (!(w0 >= 0.0 && w1 >= 0.0 && std::isfinite(w0) && std::isfinite(w1)))
+            unsupported(e, "the widths must be finite and >= 0");
+        param(e, "splitdepth");  // pbrt's own refinement depth; Embree needs none
+        const size_t d = static_cast<size_t>(degree);
+        size_t segments = 0;
+        if (basis == "bezier") {
+            if (n < d + 1 || (n - 1) % d != 0)
+                bad(*P, "a Bezier curve of degree " + std::to_string(degree) + " needs " + std::to_string(degree) +
+                            "k + 1 points (got " + std::to_string(n) + ")");
+            segments = (n - 1) / d;
+        } else {
+            if (n < d + 1)
+                bad(*P, "a B-spline of degree " + std::to_string(degree) + " needs at least " +
+                            std::to_string(degree + 1) + " points (got " + std::to_string(n) + ")");
+            segments = n - d;
+        }
+        const auto p = [&](size_t i) { return DVec3(P->numbers[3 * i], P->numbers[3 * i + 1], P->numbers[3 * i + 2]); };
+        json points = json::array();
+        for (size_t k = 0; k < segments; ++k) {
+            // The segment's Bézier points (degree 2 or 3).
+            std::vector<DVec3> b;
+            if (basis == "bezier") {
+                for (size_t i = 0; i <= d; ++i) b.push_back(p(k * d + i));
+            } else if (degree == 3) {
+                const DVec3 q0 = p(k), q1 = p(k + 1), q2 = p(k + 2), q3 = p(k + 3);
+                b = {(q0 + 4.0 * q1 + q2) / 6.0, (2.0 * q1 + q2) / 3.0, (q1 + 2.0 * q2) / 3.0, (q1 + 4.0 * q2 + q3) / 6.0};
+            } else {
+                const DVec3 q0 = p(k), q1 = p(k + 1), q2 = p(k + 2);
+                b = {(q0 + q1) / 2.0, q1, (q1 + q2) / 2.0};
+            }
+            if (degree == 2) b = {b[0], b[0] + 2.0 / 3.0 * (b[1] - b[0]), b[2] + 2.0 / 3.0 * (b[1] - b[2]), b[2]};
+            for (size_t i = k == 0 ? 0 : 1; i < 4; ++i) {
+                const double u = (double(k) + double(i) / 3.0) / double(segments);
+                points.push_back({b[i].x, b[i].y, b[i].z, 0.5 * ((1.0 - u) * w0 + u * w1)});
+            }
+        }
+        return {{"type", "curves"}, {"basis", "bezier"}, {"profile", type == "flat" ? "flat" : "round"},
+                {"points", std::move(points)}};
     }
 
     // pbrt-v4's bilinear patches: four indices per patch, the corners p00,

@@ -11,12 +11,14 @@
 #include <map>
 #include <sstream>
 
+#include "curve_parser.h"
 #include "instance_flattening.h"
 #include "light_builder.h"
 #include "material_builder.h"
 #include "scene_files.h"
 #include "strahl/core/error.h"
 #include "strahl/core/process_memory.h"
+#include "strahl/meshio/curve_file.h"
 #include "strahl/meshio/mesh_file.h"
 #include "strahl/reference/naive_accel.h"
 
@@ -47,6 +49,22 @@ bool hasTriangleWithArea(const TriangleMesh& mesh) {
 std::string shapeSource(const SceneDesc& desc, const ShapeDesc& shape) {
     return concat(desc.file.filename().string(), ": ", shape.where,
                   shape.file.empty() ? std::string() : " (" + shape.file.string() + ")");
+}
+
+// A "curves" shape in world space; its strand file, if any, read now.
+std::shared_ptr<const UserShape> makeCurveShape(const SceneDesc& desc, const ShapeDesc& shape) {
+    try {
+        CurveSetDesc curves = shape.curves;
+        if (!shape.file.empty()) {
+            StrandFile strands = loadStrandFile(shape.file);
+            curves.points = std::move(strands.points);
+            curves.segments = curveSegmentsOfStrands(strands.strandPoints, curves.basis, curves.name);
+        }
+        return std::make_shared<CurveSet>(scene_detail::placeCurves(std::move(curves), shape.transform,
+                                                                       shape.curveRadiusFollowsTransform));
+    } catch (const Error& e) {
+        fail(shapeSource(desc, shape), ": ", e.what());
+    }
 }
 
 // Every mesh attribute the shape's materials read must be on its mesh.
@@ -249,6 +267,10 @@ BuiltScene buildScene(const SceneDesc& desc, const BuildOptions& options, BuildT
             try {
                 if (shape.kind == ShapeKind::Implicit) {
                     userShapes[i] = makeImplicitShape(desc, shape);
+                    return;
+                }
+                if (shape.kind == ShapeKind::Curves) {
+                    userShapes[i] = makeCurveShape(desc, shape);
                     return;
                 }
                 LoadedMesh mesh;

@@ -16,6 +16,7 @@
 
 #include "camera_parser.h"
 #include "film_parser.h"
+#include "curve_parser.h"
 #include "implicit_parser.h"
 #include "instance_arrays.h"
 #include "instance_flattening.h"
@@ -155,7 +156,7 @@ ShapeDesc parseShape(const JsonValue& v, const ShapeContext& context) {
     ShapeDesc s;
     s.where = v.pointer();
     if (!v.raw().is_object()) v.fail("expected an object, got ", v.describe());
-    const std::string type = v.get("type").oneOf({"mesh", "implicit", "parametric", "instance"});
+    const std::string type = v.get("type").oneOf({"mesh", "implicit", "parametric", "curves", "instance"});
     if (type == "instance") {
         v.requireKeys({"type", "name", "group", "transform", "placements", "scatter"});
         s.kind = ShapeKind::Instance;
@@ -193,6 +194,8 @@ ShapeDesc parseShape(const JsonValue& v, const ShapeContext& context) {
         s.kind = ShapeKind::Implicit;
         scene_detail::parseImplicitShape(v, s.implicitSurface, s.implicitOptions);
         s.name = s.where;
+    } else if (type == "curves") {
+        scene_detail::parseCurvesShape(v, folder, s);
     } else if (type == "parametric") {
         v.requireKeys({"type", "name", "material", "transform", "surface", "mode", "tessellation",
                        "direct", "flip_normals"});
@@ -224,7 +227,7 @@ ShapeDesc parseShape(const JsonValue& v, const ShapeContext& context) {
             material->fail("unknown material '", s.material, "' (defined: ", defined, "default)");
         }
     }
-    if (s.material.empty() && s.file.empty()) s.material = "default";
+    if (s.material.empty() && (s.file.empty() || s.kind == ShapeKind::Curves)) s.material = "default";
 
     if (auto transform = v.find("transform")) s.transform = parseTransform(*transform);
     return s;

@@ -717,3 +717,39 @@ TEST(MitsubaImport, StrahlJsonScenesTakeNoDefines) {
 
 }  // namespace
 }  // namespace strahl
+
+namespace strahl {
+namespace {
+
+TEST(MitsubaImport, CurveFilesAreRoundStrandsWhoseRadiiTheTransformKeeps) {
+    const fs::path dir = test::scratchDir("mitsuba-curves");
+    // Two strands, a blank line between them, radii per point.
+    test::writeFile(dir / "hair.txt", "0 0 0 0.1\n0 0 1 0.1\n0 1 2 0.1\n0 1 3 0.05\n\n# next\n1 0 0 0.2\n1 0 1 0.2\n");
+    const SceneDesc d = parse(scene(R"(<shape type="bsplinecurve" id="fur">
+    <string name="filename" value="hair.txt"/>
+    <transform name="to_world"><scale value="2"/></transform>
+  </shape>
+  <shape type="linearcurve"><string name="filename" value="hair.txt"/></shape>)"), {}, dir / "scene.xml");
+    ASSERT_EQ(d.shapes.size(), 3u);
+    EXPECT_EQ(d.shapes[1].kind, ShapeKind::Curves);
+    EXPECT_EQ(d.shapes[1].curves.basis, CurveBasis::BSpline);
+    EXPECT_EQ(d.shapes[1].curves.type, CurveType::Round);
+    EXPECT_FALSE(d.shapes[1].curveRadiusFollowsTransform);
+    EXPECT_EQ(d.shapes[2].curves.basis, CurveBasis::Linear);
+    // The B-spline's second strand has 2 points: fewer than its basis needs.
+    EXPECT_THAT(test::errorMessage([&] { buildWorld(d, BuildOptions{}); }),
+                HasSubstr("strand 1 has 2 control points, but a bspline segment needs 4"));
+    test::writeFile(dir / "hair.txt", "0 0 0 0.1\n0 0 1 0.1\n0 1 2 0.1\n0 1 3 0.05\n");
+    const World world = buildWorld(d, BuildOptions{});
+    const CurveSet* curves = world.shapes[1].user->asCurves();
+    ASSERT_NE(curves, nullptr);
+    EXPECT_EQ(curves->primitiveCount(), 1u);
+    // Points doubled, radii as written (Mitsuba does not scale them).
+    EXPECT_EQ(curves->desc().points[3], Vec4(0, 2, 6, 0.05f));
+    EXPECT_EQ(world.shapes[2].user->primitiveCount(), 3u);
+    EXPECT_THAT(errorOf(scene(R"(<shape type="linearcurve"><string name="filename" value="x.txt"/>
+      <boolean name="flip_normals" value="true"/></shape>)")), HasSubstr("flip_normals"));
+}
+
+}  // namespace
+}  // namespace strahl

@@ -434,8 +434,10 @@ TEST(PbrtImport, MalformedOrUnsupportedInputIsOneErrorWithItsLine) {
                 HasSubstr("unknown parameter type 'quaternion'"));
     EXPECT_THAT(errorOf(scene("Shape \"sphere\" \"float radius\" [1 2")), HasSubstr("the file ends where ] should follow"));
     EXPECT_THAT(errorOf(scene("Shape \"sphere\" \"string name\" \"open")), HasSubstr("a string runs past the end of its line"));
-    EXPECT_THAT(errorOf(scene("Shape \"curve\" \"point3 P\" [0 0 0 1 0 0 2 0 0 3 0 0]\n")),
-                HasSubstr("scene.pbrt:6: Shape \"curve\": this shape is not supported yet"));
+    EXPECT_THAT(errorOf(scene("Shape \"curve\" \"point3 P\" [0 0 0 1 0 0 2 0 0 3 0 0] \"string type\" \"ribbon\"\n")),
+                HasSubstr("scene.pbrt:6: Shape \"curve\": curves of type \"ribbon\" (oriented by N) are not supported yet"));
+    EXPECT_THAT(errorOf(scene("Shape \"curve\" \"point3 P\" [0 0 0 1 0 0 2 0 0]\n")),
+                HasSubstr("scene.pbrt:6: \"point3 P\": a Bezier curve of degree 3 needs 3k + 1 points (got 3)"));
     EXPECT_THAT(errorOf(scene("Shape \"sphere\" \"float radius\" 1 \"float wobble\" 2\n")),
                 HasSubstr("scene.pbrt:6: Shape \"sphere\": parameter \"float wobble\" is not supported"));
     EXPECT_THAT(errorOf(scene("Material \"measured\" \"string filename\" \"x.bsdf\"\n" + kTriangle)),
@@ -539,6 +541,48 @@ TEST(PbrtImport, ParameterListsTakeBareOrBracketedValuesAndCommentsAnywhere) {
     EXPECT_NEAR(matrixOf(doc["shapes"][1])[1][1], 3.0, 0);
     EXPECT_EQ(doc["materials"][1]["two_sided"], true);  // a quoted bool, as pbrt-v3 wrote it
     EXPECT_EQ(doc["shapes"][2]["type"], "parametric");
+}
+
+}  // namespace
+}  // namespace strahl
+
+namespace strahl {
+namespace {
+
+TEST(PbrtImport, CurvesBecomeCubicBezierStrandsExactly) {
+    // A cubic B-spline of 5 points (2 segments), width 0.2 -> 0.1, a tube.
+    const json doc = document(scene(
+        "Shape \"curve\" \"point3 P\" [0 0 0  1 1 0  2 -1 0  3 0 0  4 1 0] \"string basis\" \"bspline\"\n"
+        "  \"float width0\" 0.2 \"float width1\" 0.1 \"string type\" \"cylinder\" \"integer splitdepth\" 5\n"
+        "Shape \"curve\" \"point3 P\" [0 0 0  1 2 0  2 0 0] \"integer degree\" 2\n"));
+    const json& tube = doc["shapes"][0];
+    EXPECT_EQ(tube["type"], "curves");
+    EXPECT_EQ(tube["basis"], "bezier");
+    EXPECT_EQ(tube["profile"], "round");
+    const json& p = tube["points"];
+    ASSERT_EQ(p.size(), 7u);  // two Bézier segments sharing a point
+    // The B-spline's Bézier points: (p0 + 4 p1 + p2) / 6 and (2 p1 + p2) / 3.
+    expectNear(vec(p[0]), {1.0, 0.5, 0.0});
+    expectNear(vec(p[1]), {4.0 / 3.0, 1.0 / 3.0, 0.0});
+    // Radius = width / 2, linear in the curve's parameter: 0.1 at the root,
+    // 0.075 half way, 0.05 at the tip.
+    EXPECT_NEAR(p[0][3].get<double>(), 0.1, 1e-12);
+    EXPECT_NEAR(p[3][3].get<double>(), 0.075, 1e-12);
+    EXPECT_NEAR(p[6][3].get<double>(), 0.05, 1e-12);
+    // A quadratic Bézier, degree elevated: q0 + 2/3 (q1 − q0), q2 + 2/3 (q1 − q2).
+    const json& flat = doc["shapes"][1]["points"];
+    EXPECT_EQ(doc["shapes"][1]["profile"], "flat");
+    ASSERT_EQ(flat.size(), 4u);
+    expectNear(vec(flat[1]), {2.0 / 3.0, 4.0 / 3.0, 0.0});
+    expectNear(vec(flat[2]), {4.0 / 3.0, 4.0 / 3.0, 0.0});
+    EXPECT_NEAR(flat[2][3].get<double>(), 0.5, 1e-12);  // width 1 by default
+    // And the document renders: the world has the two curve shapes.
+    const World world = buildWorld(SceneDocument::fromText(scene(
+        "Shape \"curve\" \"point3 P\" [0 0 0  1 1 0  2 -1 0  3 0 0] \"float width\" 0.1\n"), "scene.pbrt").parse(),
+                                   BuildOptions{});
+    ASSERT_EQ(world.shapes.size(), 1u);
+    ASSERT_NE(world.shapes[0].user, nullptr);
+    EXPECT_NE(world.shapes[0].user->asCurves(), nullptr);
 }
 
 }  // namespace

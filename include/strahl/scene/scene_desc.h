@@ -18,6 +18,7 @@
 #include "strahl/core/math.h"
 #include "strahl/core/pixel_rect.h"
 #include "strahl/film/film.h"
+#include "strahl/geometry/curve_set.h"
 #include "strahl/geometry/implicit_shape.h"
 #include "strahl/geometry/parametric_shape.h"
 #include "strahl/geometry/parametric_tessellation.h"
@@ -122,7 +123,7 @@ struct MaterialDesc {
     std::string where;
 };
 
-enum class ShapeKind { Mesh, Implicit, Parametric, Instance };
+enum class ShapeKind { Mesh, Implicit, Parametric, Curves, Instance };
 
 enum class ParametricMode { Tessellated, Direct };
 
@@ -176,6 +177,11 @@ struct ShapeDesc {
     ImplicitSurfacePtr implicitSurface;    // kind == Implicit: f, compiled at parse time
     ImplicitShapeOptions implicitOptions;  // its box, cells and tolerance
     ParametricDesc parametric;             // kind == Parametric
+    // kind == Curves: type, basis and (inline) points and segments in object
+    // space; with `file` (a strand file) the points are read when the world
+    // is built.
+    CurveSetDesc curves;
+    bool curveRadiusFollowsTransform = true;  // "transform_radius"
     Mat4 transform{1.0f};            // object to world (in a group: to the group's space)
     // kind == Instance: an instance array when not empty — the group placed
     // once per matrix, at transform · placement (group space to the array's,
