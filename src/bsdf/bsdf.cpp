@@ -347,6 +347,12 @@ bool Bsdf::isOpaque() const {
     return std::all_of(sum_->begin(), sum_->end(), [&](const WeightedModel& t) { return opaque(t.model); });
 }
 
+bool Bsdf::isFibre() const {
+    const auto fibre = [](const BsdfModel& m) { return std::holds_alternative<HairModel>(m); };
+    if (!sum_) return fibre(model_);
+    return std::any_of(sum_->begin(), sum_->end(), [&](const WeightedModel& t) { return fibre(t.model); });
+}
+
 Color Bsdf::albedo() const {
     return albedo_;
 }

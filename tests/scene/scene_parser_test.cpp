@@ -578,7 +578,7 @@ TEST(SceneParser, ShapeErrors) {
     EXPECT_EQ(errorOf(R"({"shapes": [{"positions": [[0,0,0]], "indices": [0,0,0]}]})"),
               "scene.json: /shapes/0: missing key 'type'");
     EXPECT_EQ(errorOf(R"({"shapes": [{"type": "sphere"}]})"),
-              "scene.json: /shapes/0/type: must be one of mesh, implicit, parametric, instance, got 'sphere'");
+              "scene.json: /shapes/0/type: must be one of mesh, implicit, parametric, curves, instance, got 'sphere'");
     EXPECT_EQ(errorOf(R"({"shapes": [{"type": "mesh"}]})"),
               "scene.json: /shapes/0: needs 'file' (a mesh file) or 'positions' (an inline mesh)");
     EXPECT_EQ(errorOf(triangleWith(R"("file": "a.ply")")),

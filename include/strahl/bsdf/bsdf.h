@@ -93,6 +93,17 @@ public:
     // Burley's principled BSDF as Mitsuba 3 defines it (principled.h);
     // parameters are clamped to their ranges, NaN is refused.
     static Bsdf principled(const PrincipledParameters& parameters);
+    // A hair fibre (bsdf_models.h, HairModel): absorption sigma_a per unit
+    // of the fibre's radius, longitudinal and azimuthal roughness beta_m and beta_n
+    // in [0, 1], the scales' tilt alpha in degrees and the index eta. The
+    // entry offset h follows from wo (h outside [−1, 1]) or is fixed.
+    static Bsdf hair(const Color& sigmaA, float betaM, float betaN, float alphaDegrees, float eta = 1.55f,
+                     float h = 2.0f);
+    // The absorption that gives a fibre (with beta_n) the colour c in a
+    // white furnace of many scattering events (Chiang et al. 2016, eq. 9),
+    // and its inverse, used as the hair's albedo.
+    static Color hairSigmaAFromColor(const Color& c, float betaN);
+    static Color hairColorFromSigmaA(const Color& sigmaA, float betaN);
     // (1 - weight) a + weight b (Mitsuba's blendbsdf, pbrt's mix): f and pdf
     // are the weighted sums, a sample picks a or b with probability 1 - weight
     // or weight. weight is clamped to [0, 1]; at 0 or 1 the result is a or b.
@@ -108,6 +119,10 @@ public:
     bool isSpecular() const;
     // True if it never transmits (the integrator may then flip the frame).
     bool isOpaque() const;
+    // True for a hair fibre: a far-field model of light that enters and
+    // leaves a fibre anywhere around it, so rays leave a round curve from
+    // the side facing their direction (ShadingContext::spawn).
+    bool isFibre() const;
     // A reflectance-like colour for the albedo AOV (denoisers).
     Color albedo() const;
     // This BSDF with every glossy or specular lobe at least `alpha` rough

@@ -228,6 +228,39 @@ struct PrincipledModel {
     std::optional<BsdfSample> sample(const Vec3& wo, float uLobe, const Vec2& u) const;
 };
 
+// A hair fibre (Chiang et al. 2016, "A Practical and Controllable Hair and
+// Fur Model for Production Path Tracing", with d'Eon et al. 2011's
+// longitudinal term), in a frame whose x axis is the fibre and z the
+// shading normal. Light reflects off the cuticle (p = 0, R), passes through
+// (p = 1, TT), reflects once inside (p = 2, TRT) or more (p = 3, the rest,
+// spread evenly in azimuth); each path p has a longitudinal lobe M_p (a
+// von Mises–Fisher-like function of the inclinations, variance from beta_m,
+// shifted by the scales' tilt alpha), an attenuation A_p (Fresnel at the
+// entry offset h and the absorption sigma_a along the refracted path) and an
+// azimuthal lobe N_p (a trimmed logistic of width beta_n around the
+// deflection Φ(p, h) = 2p γt − 2γo + pπ). f = Σ M_p A_p N_p / |cos θ_i|
+// (the cosine to the shading normal, which the integrator multiplies back).
+// h, the offset across the fibre where the light enters, is h = −ŵ_y for the
+// unit projection ŵ of wo onto the normal plane (docs/materials.md, "Hair"),
+// unless fixed (tests). Energy conserving (a white furnace with sigma_a = 0
+// returns 1); like every implementation of this model not reciprocal, as
+// the attenuation depends on the entry angle.
+struct HairModel {
+    Color sigmaA{0.0f};  // absorption per unit of the fibre's radius (a ray through the axis crosses 2)
+    float eta = 1.55f;
+    float hFixed = 2.0f;  // outside [−1, 1]: h from wo
+    // Precomputed from beta_m, beta_n, alpha by Bsdf::hair.
+    float v[4]{};             // longitudinal variances of p = 0, 1, 2, 3
+    float s = 0.0f;           // logistic scale
+    float sin2kAlpha[3]{}, cos2kAlpha[3]{};  // the scale tilt alpha, 2 alpha, 4 alpha
+
+    static constexpr bool kOpaque = false;
+    bool specular() const { return false; }
+    Color f(const Vec3& wo, const Vec3& wi) const;
+    float pdf(const Vec3& wo, const Vec3& wi) const;
+    std::optional<BsdfSample> sample(const Vec3& wo, float uLobe, const Vec2& u) const;
+};
+
 }  // namespace strahl::bsdf_models
 
 namespace strahl {
@@ -238,6 +271,6 @@ using BsdfModel =
                  bsdf_models::PhongModel,
                  bsdf_models::ConductorModel, bsdf_models::DielectricModel,
                  bsdf_models::ThinDielectricModel, bsdf_models::PlasticModel, bsdf_models::CoatedConductorModel,
-                 bsdf_models::MetallicRoughnessModel, bsdf_models::PrincipledModel>;
+                 bsdf_models::MetallicRoughnessModel, bsdf_models::PrincipledModel, bsdf_models::HairModel>;
 
 }  // namespace strahl
