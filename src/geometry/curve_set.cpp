@@ -186,6 +186,8 @@ SurfaceInteraction CurveSet::interaction(const Ray& ray, const Hit& hit) const {
         x = c + (p0.w + s * (p1.w - p0.w)) * Ng;  // back onto the surface
         u = s;
         Ns = Ng;
+        si.fibreAxis = Vec3(c);
+        si.fibreRadius = float(p0.w + s * (p1.w - p0.w));
     } else if (desc_.type == CurveType::Round) {
         const curve::Eval e = curve::evalBezier(b, u);
         const DVec3 C1 = xyz(e.dp);
@@ -195,6 +197,8 @@ SurfaceInteraction CurveSet::interaction(const Ray& ray, const Hit& hit) const {
         x = xyz(e.p) + e.p.w * Rn;
         Ng = glm::normalize(glm::dot(C1, C1) * Rn - e.dp.w * C1);
         Ns = Ng;
+        si.fibreAxis = Vec3(xyz(e.p));
+        si.fibreRadius = float(e.p.w);
     } else {
         // A ribbon facing the ray: the geometric normal faces it; the shading
         // normal turns across the ribbon as a cylinder's would, so that a flat

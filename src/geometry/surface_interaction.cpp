@@ -27,6 +27,10 @@ SurfaceInteraction transformInteraction(const SurfaceInteraction& si, const Mat4
     // For other maps the cube root of |det| is the mean scale.
     const float scale = std::cbrt(std::abs(glm::determinant(linear)));
     if (scale > 0.0f) out.uvDensity = si.uvDensity / scale;
+    if (si.fibreRadius > 0.0f) {
+        out.fibreAxis = transformPoint(objectToWorld, si.fibreAxis);
+        out.fibreRadius = si.fibreRadius * scale;
+    }
     return out;
 }
 

@@ -128,9 +128,11 @@ Color PathIntegrator::shade(const World& world, const SurfaceHit& first, Sampler
                                                              sampler.get2D());
         if (!bs || !(bs->pdf > 0.0f)) break;
         const Vec3 wi = ctx.toWorld(bs->wi);
-        // Reflection must stay on wo's side of the geometry, transmission cross it.
+        // Reflection must stay on wo's side of the geometry, transmission cross
+        // it — except for a fibre, whose light leaves it anywhere around
+        // (a flat ribbon's bent shading normal is no side of its geometry).
         const bool sameSide = glm::dot(wi, ctx.ng) * glm::dot(ctx.wo, ctx.ng) > 0.0f;
-        if (sameSide == bs->transmission) break;
+        if (sameSide == bs->transmission && !ctx.bsdf.isFibre()) break;
         beta *= bs->f * (std::abs(bs->wi.z) * ctx.terminatorShadowing(wi) / bs->pdf);
         if (!isFinite(beta) || maxComponent(beta) <= 0.0f) break;
         specularBounce = bs->specular;

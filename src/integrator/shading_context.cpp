@@ -18,6 +18,39 @@ float ShadingContext::terminatorShadowing(const Vec3& wi) const {
     return 2.0f / (1.0f + std::sqrt(1.0f + terminatorAlpha2 * tan2));
 }
 
+namespace {
+
+// Where a ray towards direction `dir` leaves a fibre: the point of its
+// cross-section facing dir (dir's part normal to the axis), and that radial
+// direction as the normal to offset along.
+bool fibreExit(const ShadingContext& ctx, const Vec3& dir, Vec3& p, Vec3& normal) {
+    const SurfaceInteraction& si = *ctx.si;
+    if (!(si.fibreRadius > 0.0f) || !ctx.bsdf.isFibre()) return false;
+    const float tangentLength = glm::length(si.dpdu);
+    if (!(tangentLength > 0.0f)) return false;
+    const Vec3 axis = si.dpdu / tangentLength;
+    const Vec3 radial = dir - glm::dot(dir, axis) * axis;
+    const float radialLength = glm::length(radial);
+    if (!(radialLength > 1e-6f * glm::length(dir))) return false;  // along the axis: leave where it hit
+    normal = radial / radialLength;
+    p = si.fibreAxis + si.fibreRadius * normal;
+    return true;
+}
+
+}  // namespace
+
+Ray ShadingContext::spawn(const Vec3& wi) const {
+    Vec3 p, normal;
+    if (fibreExit(*this, wi, p, normal)) return spawnRay(p, si->pError, normal, wi);
+    return spawnRay(si->p, si->pError, ng, wi);
+}
+
+Ray ShadingContext::spawnTo(const Vec3& target) const {
+    Vec3 p, normal;
+    if (fibreExit(*this, target - si->p, p, normal)) return spawnRayTo(p, si->pError, normal, target);
+    return spawnRayTo(si->p, si->pError, ng, target);
+}
+
 ShadingContext makeShadingContext(const World& world, const SurfaceHit& hit, float footprint) {
     ShadingContext ctx;
     const SurfaceInteraction& si = hit.interaction();
@@ -93,9 +126,7 @@ Color estimateLight(const World& world, const ShadingContext& ctx, const Light& 
     if (!ls || !(ls->pdf > 0.0f) || maxComponent(ls->L) <= 0.0f) return Color(0.0f);
     const Color f = ctx.fCos(ls->wi);
     if (maxComponent(f) <= 0.0f) return Color(0.0f);
-    const SurfaceInteraction& si = *ctx.si;
-    const Ray shadow = ls->atInfinity ? ctx.spawn(ls->wi)
-                                      : spawnRayTo(si.p, si.pError, ctx.ng, ls->pLight);
+    const Ray shadow = ls->atInfinity ? ctx.spawn(ls->wi) : ctx.spawnTo(ls->pLight);
     ++stats.shadowRays;
     if (world.accel->occluded(shadow)) return Color(0.0f);
     if (light.isDelta()) return f * ls->L / selectPdf;

@@ -40,8 +40,13 @@ struct ShadingContext {
     // Terminator"). fCos includes it; a BSDF sample's weight must take it too.
     float terminatorShadowing(const Vec3& wi) const;
     float pdf(const Vec3& wi) const { return bsdf.pdf(toLocal(wo), toLocal(wi)); }
-    // A ray leaving the surface in direction wi, offset past the error bound.
-    Ray spawn(const Vec3& wi) const { return spawnRay(si->p, si->pError, ng, wi); }
+    // A ray leaving the surface in direction wi, offset past the error bound;
+    // and one towards a point (shadow rays). A fibre BSDF on a round curve
+    // (Bsdf::isFibre, a far-field model of light entering and leaving the
+    // fibre anywhere around it) lets rays leave from the side of the fibre
+    // facing their direction, so that they never cross the fibre's inside.
+    Ray spawn(const Vec3& wi) const;
+    Ray spawnTo(const Vec3& target) const;
     LightSampleContext lightContext() const {
         // A transmissive surface receives light from both sides: no normal.
         return LightSampleContext{si->p, bsdf.isOpaque() ? ng : Vec3(0.0f)};

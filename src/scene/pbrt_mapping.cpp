@@ -767,12 +767,32 @@ private:
             // pbrt picks the second material with probability amount.
             const std::optional<json> amount = floatInput(m, "amount");
             out["weight"] = amount.value_or(json(0.5));
+        } else if (m.type == "hair") {
+            // pbrt's precedence: sigma_a, else reflectance, else melanin
+            // (eumelanin 1.3 when nothing is given).
+            out = {{"type", "hair"}};
+            const Parameter* sigma = param(m, "sigma_a");
+            const std::optional<json> reflectance = colorInput(m, "reflectance");
+            const Parameter* eu = param(m, "eumelanin");
+            const Parameter* pheo = param(m, "pheomelanin");
+            if (sigma) {
+                out["sigma_a"] = color(spectrum(*sigma, Use::Unbounded));
+            } else if (reflectance) {
+                out["color"] = *reflectance;
+            } else if (eu || pheo) {
+                out["eumelanin"] = number(m, "eumelanin", 0.0);
+                out["pheomelanin"] = number(m, "pheomelanin", 0.0);
+            }
+            out["ior"] = eta(m, "eta", 1.55);
+            out["beta_m"] = number(m, "beta_m", 0.3);
+            out["beta_n"] = number(m, "beta_n", 0.3);
+            out["alpha"] = number(m, "alpha", 2.0);
         } else if (m.type == "interface") {
             // A boundary between media, invisible to light.
             out = {{"type", "diffuse"}, {"opacity", 0}};
         } else {
             unsupported(m, "this material is not supported (diffuse, coateddiffuse, coatedconductor, conductor, dielectric, "
-                           "thindielectric, diffusetransmission, mix, interface)");
+                           "thindielectric, diffusetransmission, hair, mix, interface)");
         }
         if (const Parameter* n = param(m, "normalmap")) {
             if (n->type != "string") bad(*n, "expected a file name");

@@ -71,3 +71,59 @@ TEST(CurvesRender, TheNaiveTracerRendersTheSameCurves) {
 
 }  // namespace
 }  // namespace strahl
+
+namespace strahl {
+namespace {
+
+// A white furnace: lossless hair on round and flat curves inside a uniform
+// white sky. Every path's weight is 1 at every bounce, so the image is 1 —
+// unless the integrator ended paths that leave a flat ribbon on the "wrong"
+// side of its bent shading normal (it once did: 0.4 % dark).
+TEST(CurvesRender, LosslessHairInAWhiteFurnaceIsInvisible) {
+    for (const char* profile : {"round", "flat"}) {
+        const SceneDesc desc = parseSceneText(std::string(R"({
+          "camera": {"eye": [0, -4, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 30},
+          "film": {"width": 48, "height": 48},
+          "render": {"integrator": "path", "spp": 64, "max_depth": 12, "russian_roulette": false},
+          "background": 1,
+          "materials": [{"name": "white hair", "type": "hair", "sigma_a": 0, "beta_m": 0.3, "beta_n": 0.4}],
+          "shapes": [{"type": "curves", "material": "white hair", "basis": "bspline", "profile": ")") + profile + R"(",
+            "points": [[-1, 0, -1, 0.2], [-0.3, 0.2, -0.3, 0.25], [0.3, -0.2, 0.3, 0.25], [1, 0, 1, 0.2],
+                       [-1, 0.3, 1, 0.15], [-0.2, 0, 0.2, 0.2], [0.2, 0.1, -0.2, 0.2], [1, 0.3, -1, 0.15]],
+            "strands": [4, 4]}]
+        })",
+                                              "furnace.json");
+        const std::vector<float> image = test::renderBeauty(desc);
+        double sum = 0.0, lowest = 1.0;
+        for (float v : image) {
+            sum += v;
+            lowest = std::min(lowest, double(v));
+        }
+        EXPECT_NEAR(sum / double(image.size()), 1.0, 2e-3) << profile;
+        // Next-event estimation and MIS make single pixels noisy (64 spp).
+        EXPECT_GT(lowest, 0.9) << profile;
+    }
+}
+
+// A lossless round fibre lit from behind, seen from the front by the direct
+// integrator: the light reaches the camera through the fibre (TT). A shadow
+// ray leaving where the camera ray hit would cross the fibre and be blocked
+// by its far wall (measured: the image 2400 times darker); leaving from the
+// side facing the light (ShadingContext::spawnTo) it is not.
+TEST(CurvesRender, LightShinesThroughABacklitFibre) {
+    const SceneDesc desc = parseSceneText(R"({
+      "camera": {"eye": [0, -4, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 20},
+      "film": {"width": 32, "height": 32},
+      "render": {"integrator": "direct", "spp": 4},
+      "materials": [{"name": "white hair", "type": "hair", "sigma_a": 0}],
+      "shapes": [{"type": "curves", "material": "white hair", "basis": "bezier", "radius": 0.3,
+        "points": [[0, 0, -1], [0, 0, -0.3], [0, 0, 0.3], [0, 0, 1]]}],
+      "lights": [{"type": "directional", "direction": [0.1, -1, 0], "irradiance": 1}]
+    })",
+                                          "backlit.json");
+    const std::vector<float> image = test::renderBeauty(desc);
+    EXPECT_GT(test::channelSum(image) / double(image.size()), 0.3);  // measured 0.59
+}
+
+}  // namespace
+}  // namespace strahl

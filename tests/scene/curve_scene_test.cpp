@@ -85,3 +85,38 @@ TEST(CurveScene, BadInputNamesItsPlace) {
 
 }  // namespace
 }  // namespace strahl
+
+namespace strahl {
+namespace {
+
+TEST(CurveScene, HairMaterialsTakeAColourAnAbsorptionOrMelanin) {
+    const auto hairOf = [](const std::string& keys) {
+        const SceneDesc d = parseSceneText(R"({"materials": [{"name": "h", "type": "hair", )" + keys +
+                                               R"(}], "shapes": [{"type": "curves", "material": "h", "radius": 0.1,
+                                               "points": [[0,0,0], [0,0,1], [0,1,2], [0,1,3]]}]})",
+                                           "scene.json");
+        return std::get<HairMaterial>(d.materials.at(0).material.kind);
+    };
+    const HairMaterial brown = hairOf(R"("beta_m": 0.2, "alpha": -3, "ior": 1.6)");
+    EXPECT_FALSE(brown.byColor);
+    EXPECT_NEAR(brown.sigmaA.b, 1.3f * 1.37f, 1e-6f);  // eumelanin 1.3 by default
+    EXPECT_EQ(brown.betaM, 0.2f);
+    EXPECT_EQ(brown.alpha, -3.0f);
+    EXPECT_EQ(brown.ior, 1.6f);
+    const HairMaterial red = hairOf(R"("eumelanin": 0.5, "pheomelanin": 2)");
+    EXPECT_NEAR(red.sigmaA.r, 0.5f * 0.419f + 2.0f * 0.187f, 1e-6f);
+    EXPECT_TRUE(hairOf(R"("color": [0.6, 0.4, 0.2])").byColor);
+    EXPECT_EQ(hairOf(R"("sigma_a": [0.1, 0.2, 0.3])").sigmaA, Color(0.1f, 0.2f, 0.3f));
+    const auto error = [](const std::string& keys) {
+        return test::errorMessage([&] {
+            parseSceneText(R"({"materials": [{"name": "h", "type": "hair", )" + keys + R"(}], "shapes": []})",
+                           "scene.json");
+        });
+    };
+    EXPECT_THAT(error(R"("color": 0.5, "eumelanin": 1)"), HasSubstr("give one of 'color', 'sigma_a' or 'eumelanin'"));
+    EXPECT_THAT(error(R"("beta_n": 1.5)"), HasSubstr("/materials/0/beta_n"));
+    EXPECT_THAT(error(R"("alpha": 90)"), HasSubstr("/materials/0/alpha"));
+}
+
+}  // namespace
+}  // namespace strahl

@@ -587,3 +587,29 @@ TEST(PbrtImport, CurvesBecomeCubicBezierStrandsExactly) {
 
 }  // namespace
 }  // namespace strahl
+
+namespace strahl {
+namespace {
+
+TEST(PbrtImport, HairMaterialsKeepPbrtsPrecedence) {
+    const json doc = document(scene(
+        "Material \"hair\" \"rgb sigma_a\" [0.1 0.2 0.3] \"float eumelanin\" 4 \"float beta_m\" 0.2\n" + kTriangle +
+        "Material \"hair\" \"rgb reflectance\" [0.5 0.4 0.3] \"float eta\" 1.6 \"float alpha\" 3\n" + kTriangle +
+        "Material \"hair\" \"float pheomelanin\" 2\n" + kTriangle + "Material \"hair\"\n" + kTriangle));
+    std::vector<json> hair;
+    for (const json& m : doc["materials"])
+        if (m["type"] == "hair") hair.push_back(m);
+    ASSERT_EQ(hair.size(), 4u);
+    EXPECT_EQ(hair[0]["sigma_a"], json({0.1, 0.2, 0.3}));
+    EXPECT_FALSE(hair[0].contains("eumelanin"));
+    EXPECT_EQ(hair[0]["beta_m"], 0.2);
+    EXPECT_EQ(hair[1]["color"], json({0.5, 0.4, 0.3}));
+    EXPECT_EQ(hair[1]["ior"], 1.6);
+    EXPECT_EQ(hair[1]["alpha"], 3.0);
+    EXPECT_EQ(hair[2]["pheomelanin"], 2.0);
+    EXPECT_EQ(hair[2]["eumelanin"], 0.0);
+    EXPECT_FALSE(hair[3].contains("sigma_a") || hair[3].contains("color") || hair[3].contains("eumelanin"));
+}
+
+}  // namespace
+}  // namespace strahl

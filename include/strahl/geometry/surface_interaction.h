@@ -20,6 +20,11 @@ struct SurfaceInteraction {
     Vec3 dpdv{0.0f};    // tangent along v (bump maps); zero if unknown
     float uvDensity = 0.0f;  // uv units per world unit near p (texture footprints); 0 if unknown
     uint32_t materialSlot = 0;  // faceMaterials entry, 0 if the mesh has none
+    // A round curve's cross-section through p: the point on its axis and its
+    // radius (0 on every other surface). Rays a fibre BSDF scatters leave from
+    // the side of the fibre facing their direction (ShadingContext::spawn).
+    Vec3 fibreAxis{0.0f};
+    float fibreRadius = 0.0f;
     MeshAttributePoint attributes;  // a mesh's named attributes here (none elsewhere)
 };
 
@@ -27,7 +32,8 @@ struct SurfaceInteraction {
 // p mapped with its error bound widened for the map's rounding, normals mapped
 // by `normalToWorld` (the inverse transpose of objectToWorld's linear part) and
 // renormalised, dpdu and dpdv by the linear part (uvDensity divided by its mean
-// scale); uv, the material slot and the attributes are unchanged.
+// scale), a fibre's axis point as a point and its radius by the mean scale;
+// uv, the material slot and the attributes are unchanged.
 SurfaceInteraction transformInteraction(const SurfaceInteraction& si, const Mat4& objectToWorld,
                                         const Mat3& normalToWorld);
 

@@ -16,6 +16,7 @@
 #include "strahl/material/diffuse.h"
 #include "strahl/material/diffuse_transmission.h"
 #include "strahl/material/emissive.h"
+#include "strahl/material/hair.h"
 #include "strahl/material/metallic_roughness.h"
 #include "strahl/material/phong.h"
 #include "strahl/material/plastic.h"
@@ -28,7 +29,7 @@ using MaterialKind =
     std::variant<DiffuseMaterial, PhongMaterial, BlinnMaterial, ConductorMaterial,
                  DielectricMaterial, ThinDielectricMaterial, DiffuseTransmissionMaterial, PlasticMaterial,
                  CoatedConductorMaterial,
-                 MetallicRoughnessMaterial, PrincipledMaterial, BlendMaterial, EmissiveMaterial>;
+                 MetallicRoughnessMaterial, PrincipledMaterial, HairMaterial, BlendMaterial, EmissiveMaterial>;
 
 // A material kind held by pointer (BlendMaterial's parts).
 struct MaterialKindBox {
