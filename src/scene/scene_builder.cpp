@@ -63,7 +63,8 @@ std::shared_ptr<const UserShape> makeCurveShape(const SceneDesc& desc, const Sha
         return std::make_shared<CurveSet>(scene_detail::placeCurves(std::move(curves), shape.transform,
                                                                        shape.curveRadiusFollowsTransform));
     } catch (const Error& e) {
-        fail(shapeSource(desc, shape), ": ", e.what());
+        // A strand file's errors name it and the line already.
+        fail(desc.file.filename().string(), ": ", shape.where, ": ", e.what());
     }
 }
 

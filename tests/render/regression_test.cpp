@@ -67,7 +67,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, Regression, ::testing::ValuesIn(test::regressio
 TEST(RegressionSet, CoversTheScenesItWasMadeFor) {
     const std::vector<std::string> scenes = test::regressionScenes();
     for (const char* name : {"quad_and_box", "cornell_direct", "cornell_ortho_normal",
-                             "cornell_primid", "implicit_direct", "instances"}) {
+                             "cornell_primid", "implicit_direct", "instances", "curves"}) {
         EXPECT_NE(std::find(scenes.begin(), scenes.end(), name), scenes.end()) << name;
     }
 }
