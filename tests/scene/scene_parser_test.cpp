@@ -530,7 +530,7 @@ TEST(SceneParser, EnumerationsListTheChoices) {
               "scene.json: /film/outputs/0: expected a path, got an empty string");
     EXPECT_EQ(errorWith(R"("materials": [{"name": "a", "type": "glass"}])"),
               "scene.json: /materials/0/type: must be one of diffuse, phong, blinn, conductor, "
-              "dielectric, thin_dielectric, diffuse_transmission, plastic, coated_conductor, metallic_roughness, principled, blend, emissive, got 'glass'");
+              "dielectric, thin_dielectric, diffuse_transmission, plastic, coated_conductor, metallic_roughness, principled, hair, blend, emissive, got 'glass'");
     EXPECT_EQ(errorWith(R"("lights": [{"type": "area"}])"),
               "scene.json: /lights/0/type: must be one of point, spot, projector, directional, "
               "sun, environment, sky, got 'area'");

@@ -62,7 +62,7 @@ const std::string kNotAnImage = "this is a text file, not an image\n";
 TEST(ShadingInput, UnknownMaterialTypeListsTheTypes) {
     EXPECT_EQ(materialError(R"({"name": "m", "type": "velvet"})"),
               "scene.json: /materials/0/type: must be one of diffuse, phong, blinn, conductor, "
-              "dielectric, thin_dielectric, diffuse_transmission, plastic, coated_conductor, metallic_roughness, principled, blend, emissive, got 'velvet'");
+              "dielectric, thin_dielectric, diffuse_transmission, plastic, coated_conductor, metallic_roughness, principled, hair, blend, emissive, got 'velvet'");
 }
 
 TEST(ShadingInput, KeyOfAnotherTypeListsTheAllowedKeys) {
