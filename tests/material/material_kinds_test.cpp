@@ -17,7 +17,7 @@ TEST(MaterialKinds, NamesFollowTheVariantOrder) {
     const auto names = kindNames<MaterialKind>();
     const std::vector<std::string_view> expected = {
         "diffuse",         "phong",   "blinn",              "conductor", "dielectric",
-        "thin_dielectric", "diffuse_transmission", "plastic", "coated_conductor", "metallic_roughness", "principled", "blend", "emissive"};
+        "thin_dielectric", "diffuse_transmission", "plastic", "coated_conductor", "metallic_roughness", "principled", "hair", "blend", "emissive"};
     EXPECT_EQ(std::vector<std::string_view>(names.begin(), names.end()), expected);
 }
 
