@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "curve_math.h"
 #include "strahl/core/error.h"
@@ -157,14 +158,16 @@ bool CurveSet::intersect(const Ray& ray, uint32_t prim, Hit& hit) const noexcept
         found = desc_.type == CurveType::Round ? curve::intersectRoundCubic(r, b, h)
                                                : curve::intersectFlatCubic(r, b, desc_.flatSegments, h);
     }
-    // The float t must still lie inside (tnear, tfar) after rounding.
-    if (!found) return false;
+    // The float t must still lie inside (tnear, tfar) after rounding (and be
+    // a float at all: a ray of a tiny direction can meet a curve beyond it).
+    if (!found || !(h.t < double(std::numeric_limits<float>::max()))) return false;
     const float t = static_cast<float>(h.t);
     if (!(t > ray.tnear && t < ray.tfar)) return false;
+    const double ngLength = glm::length(h.Ng);
     hit.t = t;
     hit.u = static_cast<float>(h.u);
     hit.v = static_cast<float>(h.v);
-    hit.Ng = Vec3(h.Ng);
+    hit.Ng = ngLength > 0.0 ? Vec3(h.Ng / ngLength) : Vec3(0.0f);  // unit: a double beyond float's range stays finite
     return true;
 }
 
