@@ -148,12 +148,53 @@ void tilted(const HairModel& m, const Outgoing& o, int p, float& sinT, float& co
 
 // The probability of sampling each path: its attenuation's mean over the
 // channels, normalised.
-void pathProbabilities(const HairModel& m, const Outgoing& o, float pdf[kPMax + 1]) {
-    Color ap[kPMax + 1];
-    attenuation(o.cosThetaO, m.eta, o.h, crossing(m, o), ap);
+void pathProbabilities(const Color ap[kPMax + 1], float pdf[kPMax + 1]) {
     float sum = 0.0f;
     for (int p = 0; p <= kPMax; ++p) sum += pdf[p] = (ap[p].r + ap[p].g + ap[p].b) / 3.0f;
     for (int p = 0; p <= kPMax; ++p) pdf[p] = sum > 0.0f ? pdf[p] / sum : (p == 0 ? 1.0f : 0.0f);
+}
+
+// What f and pdf share for one wo: the outgoing terms, the attenuation of
+// each path and the probability of sampling it.
+struct Paths {
+    Outgoing o;
+    Color ap[kPMax + 1];
+    float probability[kPMax + 1];
+
+    Paths(const HairModel& m, const Vec3& wo) : o(outgoing(m, wo)) {
+        attenuation(o.cosThetaO, m.eta, o.h, crossing(m, o), ap);
+        pathProbabilities(ap, probability);
+    }
+};
+
+// The longitudinal lobe of every path towards wi and the azimuthal lobe of
+// all but the last (whose azimuth is uniform, 1/2π).
+void lobes(const HairModel& m, const Outgoing& o, const Vec3& wi, float M[kPMax + 1], float N[kPMax]) {
+    const float sinThetaI = std::clamp(wi.x, -1.0f, 1.0f);
+    const float cosThetaI = safeSqrt(1.0f - sinThetaI * sinThetaI);
+    const float phi = std::atan2(wi.z, wi.y) - o.phiO;
+    for (int p = 0; p < kPMax; ++p) {
+        float sinT, cosT;
+        tilted(m, o, p, sinT, cosT);
+        M[p] = longitudinal(cosThetaI, cosT, sinThetaI, sinT, m.v[p]);
+        N[p] = azimuthal(phi, p, m.s, o.gammaO, o.gammaT);
+    }
+    M[kPMax] = longitudinal(cosThetaI, o.cosThetaO, sinThetaI, o.sinThetaO, m.v[kPMax]);
+}
+
+Color evalF(const Paths& paths, const float M[kPMax + 1], const float N[kPMax], const Vec3& wi) {
+    Color sum(0.0f);
+    for (int p = 0; p < kPMax; ++p) sum += M[p] * paths.ap[p] * N[p];
+    sum += M[kPMax] * paths.ap[kPMax] / kTwoPi;
+    const float cosN = std::abs(wi.z);
+    return cosN > 0.0f ? sum / cosN : Color(0.0f);
+}
+
+float evalPdf(const Paths& paths, const float M[kPMax + 1], const float N[kPMax]) {
+    float pdf = 0.0f;
+    for (int p = 0; p < kPMax; ++p) pdf += M[p] * paths.probability[p] * N[p];
+    pdf += M[kPMax] * paths.probability[kPMax] / kTwoPi;
+    return pdf;
 }
 
 }  // namespace
@@ -161,45 +202,23 @@ void pathProbabilities(const HairModel& m, const Outgoing& o, float pdf[kPMax + 
 namespace bsdf_models {
 
 Color HairModel::f(const Vec3& wo, const Vec3& wi) const {
-    const Outgoing o = outgoing(*this, wo);
-    const float sinThetaI = std::clamp(wi.x, -1.0f, 1.0f);
-    const float cosThetaI = safeSqrt(1.0f - sinThetaI * sinThetaI);
-    const float phi = std::atan2(wi.z, wi.y) - o.phiO;
-    Color ap[kPMax + 1];
-    attenuation(o.cosThetaO, eta, o.h, crossing(*this, o), ap);
-    Color sum(0.0f);
-    for (int p = 0; p < kPMax; ++p) {
-        float sinT, cosT;
-        tilted(*this, o, p, sinT, cosT);
-        sum += longitudinal(cosThetaI, cosT, sinThetaI, sinT, v[p]) * ap[p] * azimuthal(phi, p, s, o.gammaO, o.gammaT);
-    }
-    sum += longitudinal(cosThetaI, o.cosThetaO, sinThetaI, o.sinThetaO, v[kPMax]) * ap[kPMax] / kTwoPi;
-    const float cosN = std::abs(wi.z);
-    return cosN > 0.0f ? sum / cosN : Color(0.0f);
+    const Paths paths(*this, wo);
+    float M[kPMax + 1], N[kPMax];
+    lobes(*this, paths.o, wi, M, N);
+    return evalF(paths, M, N, wi);
 }
 
 float HairModel::pdf(const Vec3& wo, const Vec3& wi) const {
-    const Outgoing o = outgoing(*this, wo);
-    const float sinThetaI = std::clamp(wi.x, -1.0f, 1.0f);
-    const float cosThetaI = safeSqrt(1.0f - sinThetaI * sinThetaI);
-    const float phi = std::atan2(wi.z, wi.y) - o.phiO;
-    float probability[kPMax + 1];
-    pathProbabilities(*this, o, probability);
-    float pdf = 0.0f;
-    for (int p = 0; p < kPMax; ++p) {
-        float sinT, cosT;
-        tilted(*this, o, p, sinT, cosT);
-        pdf += longitudinal(cosThetaI, cosT, sinThetaI, sinT, v[p]) * probability[p] *
-               azimuthal(phi, p, s, o.gammaO, o.gammaT);
-    }
-    pdf += longitudinal(cosThetaI, o.cosThetaO, sinThetaI, o.sinThetaO, v[kPMax]) * probability[kPMax] / kTwoPi;
-    return pdf;
+    const Paths paths(*this, wo);
+    float M[kPMax + 1], N[kPMax];
+    lobes(*this, paths.o, wi, M, N);
+    return evalPdf(paths, M, N);
 }
 
 std::optional<BsdfSample> HairModel::sample(const Vec3& wo, float uLobe, const Vec2& u) const {
-    const Outgoing o = outgoing(*this, wo);
-    float probability[kPMax + 1];
-    pathProbabilities(*this, o, probability);
+    const Paths paths(*this, wo);
+    const Outgoing& o = paths.o;
+    const float* probability = paths.probability;
     // Choose the path with uLobe, then reuse what is left of it (rescaled
     // to [0, 1)) for the azimuth.
     int p = 0;
@@ -225,9 +244,12 @@ std::optional<BsdfSample> HairModel::sample(const Vec3& wo, float uLobe, const V
     const float phiI = o.phiO + dphi;
     BsdfSample sample;
     sample.wi = Vec3(sinThetaI, cosThetaI * std::cos(phiI), cosThetaI * std::sin(phiI));
-    sample.pdf = pdf(wo, sample.wi);
+    // f and pdf of the sampled direction from the same path terms.
+    float M[kPMax + 1], N[kPMax];
+    lobes(*this, o, sample.wi, M, N);
+    sample.pdf = evalPdf(paths, M, N);
     if (!(sample.pdf > 0.0f)) return std::nullopt;
-    sample.f = f(wo, sample.wi);
+    sample.f = evalF(paths, M, N, sample.wi);
     sample.transmission = sample.wi.z * wo.z < 0.0f;
     return sample;
 }

@@ -180,6 +180,7 @@ SurfaceInteraction CurveSet::interaction(const Ray& ray, const Hit& hit) const {
     SurfaceInteraction si;
     DVec3 Ng, Ns;
     double v01 = 0.5;
+    curve::Eval e;  // the curve at the hit's u, evaluated once
     if (desc_.type == CurveType::Round && desc_.basis == CurveBasis::Linear) {
         const DVec4 p0(desc_.points[desc_.segments[hit.primID]]), p1(desc_.points[desc_.segments[hit.primID] + 1]);
         double s;
@@ -191,8 +192,9 @@ SurfaceInteraction CurveSet::interaction(const Ray& ray, const Hit& hit) const {
         Ns = Ng;
         si.fibreAxis = Vec3(c);
         si.fibreRadius = float(p0.w + s * (p1.w - p0.w));
+        e = curve::evalBezier(b, u);
     } else if (desc_.type == CurveType::Round) {
-        const curve::Eval e = curve::evalBezier(b, u);
+        e = curve::evalBezier(b, u);
         const DVec3 C1 = xyz(e.dp);
         DVec3 R = x - xyz(e.p);
         R -= C1 * (glm::dot(R, C1) / glm::dot(C1, C1));
@@ -206,7 +208,7 @@ SurfaceInteraction CurveSet::interaction(const Ray& ray, const Hit& hit) const {
         // A ribbon facing the ray: the geometric normal faces it; the shading
         // normal turns across the ribbon as a cylinder's would, so that a flat
         // strand shades like a round one (v = ±1 at its edges).
-        const curve::Eval e = curve::evalBezier(b, u);
+        e = curve::evalBezier(b, u);
         const DVec3 T = glm::normalize(xyz(e.dp));
         DVec3 facing = -d + T * glm::dot(d, T);
         if (glm::dot(facing, facing) <= 0.0) facing = glm::abs(T.x) < 0.9 ? glm::cross(T, DVec3(1, 0, 0)) : glm::cross(T, DVec3(0, 1, 0));
@@ -222,7 +224,6 @@ SurfaceInteraction CurveSet::interaction(const Ray& ray, const Hit& hit) const {
     while (last + 1 < primitiveCount() && hasLeftNeighbour(last + 1)) ++last;
     const double strandU = (double(hit.primID - first) + u) / double(last - first + 1);
 
-    const curve::Eval e = curve::evalBezier(b, u);
     si.p = Vec3(x);
     // Curve hits come from float Newton iterations (Embree) or bisection
     // (reference): bound the error by 2^-16 of the coordinates' scale — far
