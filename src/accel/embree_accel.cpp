@@ -18,6 +18,10 @@
 //  - A mesh with a Cutout gets it as its user data and one filter function
 //    for both intersection and occlusion, which rejects candidate hits on its
 //    holes (Embree then keeps traversing).
+//  - A mesh whose triangles mostly pair up (quad_faces.h) becomes Embree
+//    quad geometry when the options allow it: its QuadFaces (owned here) give
+//    Embree the corners, and the queries (EmbreeSceneAccel) and the cut-out
+//    filter turn every quad hit back into a triangle hit.
 //  - A CurveSet is the one user shape Embree does not call back for: it
 //    becomes Embree's own curve geometry of its type and basis, its control
 //    points (x, y, z, r) and segment starts shared as they are. Its
@@ -35,6 +39,7 @@
 
 #include <cstddef>
 #include <cstring>
+#include <memory>
 #include <vector>
 
 #include "embree_scene.h"
@@ -109,16 +114,23 @@ void userOccluded(const RTCOccludedFunctionNArguments* args) {
 
 // ---- cut-outs -------------------------------------------------------------------
 
-// Intersection and occlusion filter of a mesh with a Cutout (its user data):
-// a candidate hit on a hole is rejected (valid = 0), and Embree goes on
-// looking behind it.
+// A mesh's cut-out and, when it is traced as quads, its faces: the user data
+// of its filter function.
+struct MeshFilter {
+    const Cutout* cutout = nullptr;
+    const QuadFaces* quads = nullptr;
+};
+
+// Intersection and occlusion filter of a mesh with a Cutout: a candidate hit
+// on a hole is rejected (valid = 0), and Embree goes on looking behind it.
 void cutoutFilter(const RTCFilterFunctionNArguments* args) {
-    const auto* cutout = static_cast<const Cutout*>(args->geometryUserPtr);
+    const auto* filter = static_cast<const MeshFilter*>(args->geometryUserPtr);
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] != -1) continue;
-        if (!cutout->solid(RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i),
-                           RTCHitN_v(args->hit, args->N, i)))
-            args->valid[i] = 0;
+        uint32_t prim = RTCHitN_primID(args->hit, args->N, i);
+        float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
+        if (filter->quads) toTriangleHit(*filter->quads, prim, u, v);
+        if (!filter->cutout->solid(prim, u, v)) args->valid[i] = 0;
     }
 }
 
@@ -127,9 +139,9 @@ void cutoutFilter(const RTCFilterFunctionNArguments* args) {
 class EmbreeAccel final : public EmbreeSceneAccel {
 public:
     EmbreeAccel(const AccelScene& scene, const AccelBuildOptions& options)
-        : EmbreeSceneAccel(options) {
+        : EmbreeSceneAccel(options), quads_(options.quads) {
         for (size_t i = 0; i < scene.shapes.size(); ++i) {
-            const RTCGeometry geom = newShapeGeometry(scene.shapes[i], static_cast<unsigned>(i));
+            const RTCGeometry geom = newShapeGeometry(scene.shapes[i], 0, static_cast<unsigned>(i));
             attach(geom, static_cast<unsigned>(i), scene.shapes[i].bounds(), "adding a shape");
         }
 
@@ -138,13 +150,18 @@ public:
             RTCScene prototype = newPrototypeScene();
             Bounds3 bounds;
             for (size_t i = 0; i < shapes.size(); ++i) {
-                const RTCGeometry geom = newShapeGeometry(shapes[i], static_cast<unsigned>(i));
+                const RTCGeometry geom = newShapeGeometry(shapes[i], prototypeCount(), static_cast<unsigned>(i));
                 attachTo(prototype, geom, static_cast<unsigned>(i), "adding a prototype's shape");
                 bounds.expand(shapes[i].bounds());
             }
             commitPrototype(prototype);
             prototypeBounds.push_back(bounds);
         }
+
+        std::vector<uint32_t> prototypeOfInstance;
+        prototypeOfInstance.reserve(scene.instances.size());
+        for (const AccelInstance& instance : scene.instances) prototypeOfInstance.push_back(instance.prototype);
+        setInstances(scene.shapes.size(), std::move(prototypeOfInstance));
 
         for (size_t k = 0; k < scene.instances.size(); ++k) {
             const AccelInstance& instance = scene.instances[k];
@@ -164,10 +181,10 @@ public:
     }
 
 private:
-    // The Embree geometry of one shape, not yet committed or attached. `geomID`
-    // only names the shape in errors.
-    RTCGeometry newShapeGeometry(const ShapeRef& shape, unsigned geomID) {
-        if (shape.mesh) return newMeshGeometry(*shape.mesh, shape.cutout);
+    // The Embree geometry of one shape, not yet committed or attached: shape
+    // `geomID` of the top level (scene 0) or of prototype scene - 1.
+    RTCGeometry newShapeGeometry(const ShapeRef& shape, size_t scene, unsigned geomID) {
+        if (shape.mesh) return newMeshGeometry(*shape.mesh, shape.cutout, scene, geomID);
         if (const CurveSet* curves = shape.user->asCurves()) return newCurveGeometry(*curves);
         return newUserGeometry(*shape.user, geomID);
     }
@@ -202,8 +219,13 @@ private:
         return geom;
     }
 
-    RTCGeometry newMeshGeometry(const TriangleMesh& mesh, const Cutout* cutout) {
-        RTCGeometry geom = rtcNewGeometry(device(), RTC_GEOMETRY_TYPE_TRIANGLE);
+    RTCGeometry newMeshGeometry(const TriangleMesh& mesh, const Cutout* cutout, size_t scene, unsigned geomID) {
+        const QuadFaces* quads = nullptr;
+        if (quads_) {
+            auto faces = std::make_unique<QuadFaces>(pairTriangles(mesh));
+            if (quadsPay(*faces, mesh.triangleCount())) quads = quadFaces_.emplace_back(std::move(faces)).get();
+        }
+        RTCGeometry geom = rtcNewGeometry(device(), quads ? RTC_GEOMETRY_TYPE_QUAD : RTC_GEOMETRY_TYPE_TRIANGLE);
         // The scene's quality picks its builder, the geometry's how the mesh's
         // own triangles are split: spatial splits (high) need both.
         rtcSetGeometryBuildQuality(geom, quality());
@@ -216,10 +238,17 @@ private:
                                                 sizeof(Vec3), nv);
             if (dst) std::memcpy(dst, mesh.positions.data(), nv * sizeof(Vec3));
         }
-        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                   mesh.indices.data(), 0, 3 * sizeof(uint32_t), nt);
+        if (quads) {
+            rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, quads->corners.data(), 0,
+                                       4 * sizeof(uint32_t), quads->faceCount);
+            traceAsQuads(scene, geomID, quads);
+        } else {
+            rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                       mesh.indices.data(), 0, 3 * sizeof(uint32_t), nt);
+        }
         if (cutout) {
-            rtcSetGeometryUserData(geom, const_cast<Cutout*>(cutout));
+            MeshFilter* filter = filters_.emplace_back(std::make_unique<MeshFilter>(MeshFilter{cutout, quads})).get();
+            rtcSetGeometryUserData(geom, filter);
             rtcSetGeometryIntersectFilterFunction(geom, &cutoutFilter);
             rtcSetGeometryOccludedFilterFunction(geom, &cutoutFilter);
         }
@@ -243,6 +272,10 @@ private:
         rtcSetGeometryOccludedFunction(geom, &userOccluded);
         return geom;
     }
+
+    bool quads_;  // AccelBuildOptions::quads
+    std::vector<std::unique_ptr<QuadFaces>> quadFaces_;  // of the meshes traced as quads
+    std::vector<std::unique_ptr<MeshFilter>> filters_;   // of the meshes with cut-outs
 };
 
 }  // namespace

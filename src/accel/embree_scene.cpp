@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <iterator>
 
 #include "strahl/core/error.h"
 
@@ -141,6 +142,8 @@ Hit EmbreeSceneAccel::intersect(const Ray& ray) const {
     hit.geomID = rh.hit.geomID;
     hit.primID = rh.hit.primID;
     hit.instID = rh.hit.instID[0];
+    if (!quadTables_.empty())
+        if (const QuadFaces* quads = quadsOf(hit.instID, hit.geomID)) toTriangleHit(*quads, hit.primID, hit.u, hit.v);
     return hit;
 }
 
@@ -154,12 +157,44 @@ bool EmbreeSceneAccel::occluded(const Ray& ray) const {
 void EmbreeSceneAccel::intersect8(const int* valid, RayHitPacket8& packet, RayCoherence c) const {
     RTCIntersectContext context = makeContext(c);
     rtcIntersect8(valid, scene_, &context, reinterpret_cast<RTCRayHit8*>(&packet));
+    if (!quadTables_.empty()) toTriangleHits(valid, packet);
 }
 
 void EmbreeSceneAccel::intersect16(const int* valid, RayHitPacket16& packet,
                                    RayCoherence c) const {
     RTCIntersectContext context = makeContext(c);
     rtcIntersect16(valid, scene_, &context, reinterpret_cast<RTCRayHit16*>(&packet));
+    if (!quadTables_.empty()) toTriangleHits(valid, packet);
+}
+
+void EmbreeSceneAccel::traceAsQuads(size_t scene, unsigned geomID, const QuadFaces* faces) {
+    if (quadTables_.size() <= scene) quadTables_.resize(scene + 1);
+    std::vector<const QuadFaces*>& table = quadTables_[scene];
+    if (table.size() <= geomID) table.resize(geomID + 1, nullptr);
+    table[geomID] = faces;
+    quadTableBytes_ += faces->memoryBytes();
+}
+
+void EmbreeSceneAccel::setInstances(size_t topLevelShapes, std::vector<uint32_t> prototypeOfInstance) {
+    topLevelShapes_ = topLevelShapes;
+    prototypeOfInstance_ = std::move(prototypeOfInstance);
+}
+
+const QuadFaces* EmbreeSceneAccel::quadsOf(uint32_t instID, uint32_t geomID) const {
+    size_t scene = 0;
+    if (instID != RTC_INVALID_GEOMETRY_ID) scene = 1 + size_t(prototypeOfInstance_[instID - topLevelShapes_]);
+    if (scene >= quadTables_.size()) return nullptr;
+    const std::vector<const QuadFaces*>& table = quadTables_[scene];
+    return geomID < table.size() ? table[geomID] : nullptr;
+}
+
+template <class Packet>
+void EmbreeSceneAccel::toTriangleHits(const int* valid, Packet& packet) const {
+    for (size_t i = 0; i < std::size(packet.geomID); ++i) {
+        if (valid[i] != -1 || packet.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
+        if (const QuadFaces* quads = quadsOf(packet.instID[i], packet.geomID[i]))
+            toTriangleHit(*quads, packet.primID[i], packet.u[i], packet.v[i]);
+    }
 }
 
 int EmbreeSceneAccel::nativePacketWidth() const {

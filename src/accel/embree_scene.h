@@ -21,6 +21,7 @@
 
 #include "embree_device.h"
 #include "strahl/accel/accel.h"
+#include "strahl/accel/quad_faces.h"
 
 namespace strahl {
 
@@ -36,7 +37,7 @@ public:
     void intersect16(const int* valid, RayHitPacket16& packet, RayCoherence c) const override;
     int nativePacketWidth() const override;
     Bounds3 bounds() const override { return bounds_; }
-    size_t memoryBytes() const override { return device_.bytesInUse(); }
+    size_t memoryBytes() const override { return device_.bytesInUse() + quadTableBytes_; }
 
 protected:
     // Creates the device (options.threads and memory limit) and an empty scene
@@ -63,7 +64,21 @@ protected:
     // Builds the BVH over everything attached.
     void commit();
 
+    // Meshes traced as Embree quads: every query turns a hit on one back into
+    // a hit on the mesh's triangle (toTriangleHit), so callers only ever see
+    // triangle indices. `scene` is 0 for the top level, p + 1 for prototype p;
+    // `faces` must outlive the accelerator.
+    void traceAsQuads(size_t scene, unsigned geomID, const QuadFaces* faces);
+    // Which prototype each instance places (instance k has the top-level ID
+    // topLevelShapes + k), for hits inside instances.
+    void setInstances(size_t topLevelShapes, std::vector<uint32_t> prototypeOfInstance);
+
 private:
+    // The quads of the mesh a hit is on, or null when it is not traced as quads.
+    const QuadFaces* quadsOf(uint32_t instID, uint32_t geomID) const;
+    template <class Packet>
+    void toTriangleHits(const int* valid, Packet& packet) const;
+
     static bool onProgress(void* self, double fraction);
     // Build quality and flags of the options, for the top-level scene and prototypes.
     void configure(RTCScene scene) const;
@@ -75,6 +90,11 @@ private:
     RTCScene scene_ = nullptr;
     std::vector<RTCScene> prototypes_;
     Bounds3 bounds_;
+    // [scene][geomID] as traceAsQuads() describes; empty when no mesh is.
+    std::vector<std::vector<const QuadFaces*>> quadTables_;
+    size_t quadTableBytes_ = 0;
+    size_t topLevelShapes_ = 0;
+    std::vector<uint32_t> prototypeOfInstance_;
 };
 
 }  // namespace strahl

@@ -14,10 +14,12 @@ namespace strahl::app {
 
 namespace {
 
-// "compact" or "not compact", and "(auto)" when no flag chose it.
+// "compact" or "not compact", and "(auto)" when no flag chose it; whether
+// paired triangles are traced as quads.
 std::string bvhLayoutName(const BuildOptions& build, const World& world) {
     const bool compact = useCompactBvh(build, world.triangleCount());
-    return std::string(compact ? "compact" : "not compact") + (build.compact ? "" : " (auto)");
+    return std::string(compact ? "compact" : "not compact") + (build.compact ? "" : " (auto)") +
+           (build.quads ? ", quads where triangles pair" : ", triangles only");
 }
 
 // One line per shape: its index (the geomID within its list), name and size.

@@ -369,6 +369,7 @@ BuiltScene buildScene(const SceneDesc& desc, const BuildOptions& options, BuildT
         accelOptions.progress = options.bvhProgress;
         accelOptions.quality = options.bvhQuality;
         accelOptions.compact = useCompactBvh(options, world.triangleCount());
+        accelOptions.quads = options.quads;
         accelOptions.memoryLimitBytes = options.memoryLimitBytes;
         accelOptions.memoryBaselineBytes = loadedBytes;
         try {

@@ -94,6 +94,10 @@ struct AccelBuildOptions {
     // Embree's compact mode: indexed triangles and smaller nodes, about half
     // the BVH memory for somewhat slower rays (docs/memory.md).
     bool compact = false;
+    // Meshes whose triangles mostly come in pairs sharing an edge (quad faces,
+    // tessellated grids) are traced as Embree quads: the same surface in half
+    // the primitives (accel/quad_faces.h). False: always triangles.
+    bool quads = true;
     // When not 0: Embree's allocations fail once memoryBaselineBytes plus the
     // bytes Embree holds would pass this, and the build throws strahl::Error
     // saying so — instead of the process being killed by the kernel.

@@ -28,6 +28,8 @@ struct BuildOptions {
     // builds 1.8x faster, for rays 10-15% slower (docs/memory.md). Unset: the
     // choice of useCompactBvh below.
     std::optional<bool> compact;
+    // Meshes of paired triangles traced as Embree quads (AccelBuildOptions::quads).
+    bool quads = true;
     // When not 0: resident memory allowed after loading, and for the process
     // while Embree builds (its memory monitor; see AccelBuildOptions). Going
     // past it is a strahl::Error, not a kill by the kernel.
