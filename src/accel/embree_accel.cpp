@@ -18,8 +18,8 @@
 //  - A mesh with a Cutout gets it as its user data and one filter function
 //    for both intersection and occlusion, which rejects candidate hits on its
 //    holes (Embree then keeps traversing).
-//  - A mesh whose triangles mostly pair up (quad_faces.h) becomes Embree
-//    quad geometry when the options allow it: its QuadFaces (owned here) give
+//  - A mesh whose triangles pair up (quad_faces.h) becomes Embree quad
+//    geometry when the options' QuadPolicy says it pays: its QuadFaces (owned here) give
 //    Embree the corners, and the queries (EmbreeSceneAccel) and the cut-out
 //    filter turn every quad hit back into a triangle hit.
 //  - A CurveSet is the one user shape Embree does not call back for: it
@@ -221,10 +221,12 @@ private:
 
     RTCGeometry newMeshGeometry(const TriangleMesh& mesh, const Cutout* cutout, size_t scene, unsigned geomID) {
         const QuadFaces* quads = nullptr;
-        if (quads_) {
-            auto faces = std::make_unique<QuadFaces>(pairTriangles(mesh));
-            if (quadsPay(*faces, mesh.triangleCount())) quads = quadFaces_.emplace_back(std::move(faces)).get();
-        }
+        std::unique_ptr<QuadFaces> pairs;
+        auto pairing = [&]() -> const QuadFaces& {
+            if (!pairs) pairs = std::make_unique<QuadFaces>(pairTriangles(mesh));
+            return *pairs;
+        };
+        if (tracesAsQuads(quads_, mesh.triangleCount(), pairing)) quads = quadFaces_.emplace_back(std::move(pairs)).get();
         RTCGeometry geom = rtcNewGeometry(device(), quads ? RTC_GEOMETRY_TYPE_QUAD : RTC_GEOMETRY_TYPE_TRIANGLE);
         // The scene's quality picks its builder, the geometry's how the mesh's
         // own triangles are split: spatial splits (high) need both.
@@ -273,7 +275,7 @@ private:
         return geom;
     }
 
-    bool quads_;  // AccelBuildOptions::quads
+    QuadPolicy quads_;  // AccelBuildOptions::quads
     std::vector<std::unique_ptr<QuadFaces>> quadFaces_;  // of the meshes traced as quads
     std::vector<std::unique_ptr<MeshFilter>> filters_;   // of the meshes with cut-outs
 };

@@ -75,10 +75,6 @@ QuadFaces pairTriangles(const TriangleMesh& mesh) {
     return quads;
 }
 
-bool quadsPay(const QuadFaces& quads, size_t triangleCount) {
-    return triangleCount > 0 && 2 * quads.pairedTriangles >= triangleCount;
-}
-
 void toTriangleHit(const QuadFaces& quads, uint32_t& prim, float& u, float& v) {
     const QuadFace face = quads.faces.empty() ? QuadFace{2 * prim, 0, 0, true} : quads.faces[prim];
     if (!face.pair) {  // (a, b, c, c): only its first half, (a, b, c), has area

@@ -19,7 +19,9 @@ namespace {
 std::string bvhLayoutName(const BuildOptions& build, const World& world) {
     const bool compact = useCompactBvh(build, world.triangleCount());
     return std::string(compact ? "compact" : "not compact") + (build.compact ? "" : " (auto)") +
-           (build.quads ? ", quads where triangles pair" : ", triangles only");
+           (build.quads == QuadPolicy::Never    ? ", triangles only"
+            : build.quads == QuadPolicy::Always ? ", quads where triangles pair"
+                                                : ", quads for large paired meshes (auto)");
 }
 
 // One line per shape: its index (the geomID within its list), name and size.

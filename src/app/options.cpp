@@ -97,11 +97,13 @@ void addMemoryOptions(CLI::App& command, Options& o) {
         "peak memory and a faster build, for rays 10-15% slower; --no-compact: "
         "the fastest rays. Default: compact above 4M stored triangles or with "
         "--memory-limit, else not (docs/memory.md)");
-    command.add_flag("!--no-quads", o.quads,
-                     "Trace every mesh as Embree triangles. By default a mesh whose "
-                     "triangles mostly come in pairs sharing an edge (quad faces, "
-                     "tessellated grids) is traced as Embree quads: the same surface "
-                     "in half the primitives, a smaller BVH and faster rays (docs/geometry.md)");
+    command.add_flag_function(
+        "--quads,!--no-quads", [&o](std::int64_t count) { o.quads = count > 0; },
+        "Trace meshes whose triangles come in pairs sharing an edge (quad faces, "
+        "tessellated grids) as Embree quads: the same surface in half the "
+        "primitives. --quads: every mesh at least half paired; --no-quads: none. "
+        "Default: meshes of 512K triangles or more, 90% paired, where quads "
+        "save a fifth of the BVH memory and trace faster (docs/geometry.md)");
     command.add_option("--memory-limit", o.memoryLimit,
                        "Stop with a clear error (exit 1) instead of being killed when loading "
                        "the scene or building the BVH would take the process past SIZE of "

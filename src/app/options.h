@@ -47,7 +47,7 @@ struct Options {
     // render and info: Embree's BVH build (docs/memory.md)
     std::string bvhQuality = "medium";       // low | medium | high
     std::optional<bool> compact;             // --compact/--no-compact; unset: by scene size (useCompactBvh)
-    bool quads = true;                       // --no-quads: paired triangles stay triangles in the BVH
+    std::optional<bool> quads;               // --quads/--no-quads; unset: by mesh (QuadPolicy::Auto)
     std::optional<std::string> memoryLimit;  // e.g. "8G": a clean stop instead of a kill
     std::string algorithm = "raytrace";  // raytrace | raster
     ColorSettings color;

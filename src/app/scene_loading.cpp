@@ -69,7 +69,7 @@ BuildOptions buildOptions(const Options& o) {
     build.threads = o.threads.value_or(0);
     build.bvhQuality = bvhQualityFromName(o.bvhQuality);
     build.compact = o.compact;
-    build.quads = o.quads;
+    if (o.quads) build.quads = *o.quads ? QuadPolicy::Always : QuadPolicy::Never;
     if (o.memoryLimit) build.memoryLimitBytes = parseByteSize(*o.memoryLimit, "--memory-limit");
     return build;
 }

@@ -14,6 +14,7 @@
 
 #include "strahl/accel/accel.h"
 #include "strahl/core/rng.h"
+#include "strahl/geometry/cutout.h"
 
 namespace strahl {
 namespace {
@@ -34,7 +35,24 @@ TEST(QuadFaces, FanSplitQuadsNeedNoTable) {
     EXPECT_EQ(quads.pairedTriangles, 4u);
     // (a, b, c) + (a, c, d) -> Embree's (d, a, b, c), split along a-c.
     EXPECT_EQ(quads.corners, (std::vector<uint32_t>{3, 0, 1, 2, 2, 1, 4, 5}));
-    EXPECT_TRUE(quadsPay(quads, 4));
+    auto pairs = [&]() -> const QuadFaces& { return quads; };
+    EXPECT_TRUE(tracesAsQuads(QuadPolicy::Always, 4, pairs));
+    EXPECT_FALSE(tracesAsQuads(QuadPolicy::Auto, 4, pairs)) << "too small to pay";
+    EXPECT_FALSE(tracesAsQuads(QuadPolicy::Never, 4, pairs));
+}
+
+TEST(QuadFaces, AutoTracesLargeWellPairedMeshesAsQuads) {
+    QuadFaces quads;
+    auto pairs = [&]() -> const QuadFaces& { return quads; };
+    const size_t n = kQuadsFromTriangles;
+    quads.pairedTriangles = n;
+    EXPECT_TRUE(tracesAsQuads(QuadPolicy::Auto, n, pairs));
+    EXPECT_FALSE(tracesAsQuads(QuadPolicy::Auto, n - 1, pairs)) << "below the size";
+    quads.pairedTriangles = size_t(0.8 * double(n));
+    EXPECT_FALSE(tracesAsQuads(QuadPolicy::Auto, n, pairs)) << "too few pairs for auto";
+    EXPECT_TRUE(tracesAsQuads(QuadPolicy::Always, n, pairs));
+    quads.pairedTriangles = n / 2 - 2;
+    EXPECT_FALSE(tracesAsQuads(QuadPolicy::Always, n, pairs)) << "under half paired";
 }
 
 TEST(QuadFaces, RotatedPairsAndLoneTrianglesGetATable) {
@@ -52,7 +70,8 @@ TEST(QuadFaces, RotatedPairsAndLoneTrianglesGetATable) {
     EXPECT_FALSE(quads.faces[2].pair);
     EXPECT_EQ(quads.faces[2].firstTriangle, 3u);
     EXPECT_EQ(quads.pairedTriangles, 2u);
-    EXPECT_TRUE(quadsPay(quads, 4)) << "half the triangles pair";
+    EXPECT_TRUE(tracesAsQuads(QuadPolicy::Always, 4, [&]() -> const QuadFaces& { return quads; }))
+        << "half the triangles pair";
     EXPECT_EQ(std::vector<uint32_t>(quads.corners.begin(), quads.corners.begin() + 4),
               (std::vector<uint32_t>{4, 5, 6, 6}))
         << "a lone triangle is the degenerate quad (a, b, c, c)";
@@ -63,7 +82,9 @@ TEST(QuadFaces, RotatedPairsAndLoneTrianglesGetATable) {
     TriangleMesh soup;
     soup.positions = m.positions;
     soup.indices = {4, 5, 6, 0, 1, 2, 1, 2, 3};  // 1->2 twice in one direction: not neighbours of one winding
-    EXPECT_FALSE(quadsPay(pairTriangles(soup), 3));
+    const QuadFaces none = pairTriangles(soup);
+    EXPECT_EQ(none.pairedTriangles, 0u);
+    EXPECT_FALSE(tracesAsQuads(QuadPolicy::Always, 3, [&]() -> const QuadFaces& { return none; }));
 }
 
 // A height field over a cells x cells grid, each cell split along a random
@@ -141,13 +162,15 @@ TEST(QuadFaces, EmbreeQuadHitsComeBackAsTheTrianglesHits) {
     const TriangleMesh grid = mixedGrid(24, 5);
     const QuadFaces quads = pairTriangles(grid);
     ASSERT_FALSE(quads.faces.empty());
-    ASSERT_TRUE(quadsPay(quads, grid.triangleCount())) << "the grid must be traced as quads";
+    ASSERT_TRUE(tracesAsQuads(QuadPolicy::Always, grid.triangleCount(), [&]() -> const QuadFaces& { return quads; }))
+        << "the grid must be traced as quads";
     ASSERT_LT(quads.pairedTriangles, grid.triangleCount()) << "and have lone triangles too";
 
     const TriangleMesh* meshes[] = {&grid};
-    const auto accel = buildEmbreeAccel(meshes, {});
-    AccelBuildOptions trianglesOnly;
-    trianglesOnly.quads = false;
+    AccelBuildOptions asQuads, trianglesOnly;
+    asQuads.quads = QuadPolicy::Always;
+    trianglesOnly.quads = QuadPolicy::Never;
+    const auto accel = buildEmbreeAccel(meshes, asQuads);
     const auto reference = buildEmbreeAccel(meshes, trianglesOnly);
     EXPECT_LT(accel->memoryBytes(), reference->memoryBytes()) << "half the primitives";
 
@@ -199,7 +222,9 @@ TEST(QuadFaces, HitsInsideInstancesComeBackAsTriangles) {
     shifted.prototype = 0;
     shifted.objectToWorld = glm::translate(Mat4(1.0f), Vec3(100.0f, 0.0f, 0.0f));
     scene.instances = {shifted};
-    const auto accel = buildEmbreeAccel(scene, {});
+    AccelBuildOptions asQuads;
+    asQuads.quads = QuadPolicy::Always;
+    const auto accel = buildEmbreeAccel(scene, asQuads);
 
     for (const Target& target : targets(grid, 500, 23)) {
         Ray ray = target.ray;
@@ -219,6 +244,36 @@ TEST(QuadFaces, HitsInsideInstancesComeBackAsTriangles) {
         EXPECT_EQ(placed.geomID, 0u);
         expectTriangleHit(placed, target, "instanced quads");
     }
+}
+
+// A cut-out sees triangle hits too: a checkerboard over (triangle parity,
+// u > 0.5) cuts the same holes traced as quads as traced as triangles.
+class TriangleChecker final : public Cutout {
+public:
+    bool solid(uint32_t prim, float u, float) const noexcept override { return (prim % 2 == 0) == (u > 0.5f); }
+};
+
+TEST(QuadFaces, CutoutFiltersSeeTriangleHits) {
+    const TriangleMesh grid = mixedGrid(16, 13);
+    const TriangleChecker checker;
+    const std::vector<ShapeRef> shapes{{&grid, nullptr, &checker}};
+    AccelBuildOptions asQuads, trianglesOnly;
+    asQuads.quads = QuadPolicy::Always;
+    trianglesOnly.quads = QuadPolicy::Never;
+    const auto quads = buildEmbreeAccel(std::span<const ShapeRef>(shapes), asQuads);
+    const auto triangles = buildEmbreeAccel(std::span<const ShapeRef>(shapes), trianglesOnly);
+    int holes = 0;
+    for (const Target& target : targets(grid, 2000, 31)) {
+        if (std::abs(target.u - 0.5f) < 1e-3f) continue;  // on the checker's edge
+        const bool solid = checker.solid(target.triangle, target.u, target.v);
+        holes += !solid;
+        const Hit a = quads->intersect(target.ray), b = triangles->intersect(target.ray);
+        EXPECT_EQ(a.valid(), solid);
+        EXPECT_EQ(b.valid(), solid);
+        if (solid) expectTriangleHit(a, target, "cut-out quads");
+        EXPECT_EQ(quads->occluded(target.ray), solid);
+    }
+    EXPECT_GT(holes, 500);
 }
 
 }  // namespace

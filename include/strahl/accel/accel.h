@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "strahl/accel/quad_faces.h"
 #include "strahl/core/bounds.h"
 #include "strahl/core/math.h"
 #include "strahl/core/packet.h"
@@ -94,10 +95,10 @@ struct AccelBuildOptions {
     // Embree's compact mode: indexed triangles and smaller nodes, about half
     // the BVH memory for somewhat slower rays (docs/memory.md).
     bool compact = false;
-    // Meshes whose triangles mostly come in pairs sharing an edge (quad faces,
+    // Which meshes whose triangles come in pairs sharing an edge (quad faces,
     // tessellated grids) are traced as Embree quads: the same surface in half
-    // the primitives (accel/quad_faces.h). False: always triangles.
-    bool quads = true;
+    // the primitives (accel/quad_faces.h says when that pays).
+    QuadPolicy quads = QuadPolicy::Auto;
     // When not 0: Embree's allocations fail once memoryBaselineBytes plus the
     // bytes Embree holds would pass this, and the build throws strahl::Error
     // saying so — instead of the process being killed by the kernel.

@@ -29,7 +29,7 @@ struct BuildOptions {
     // choice of useCompactBvh below.
     std::optional<bool> compact;
     // Meshes of paired triangles traced as Embree quads (AccelBuildOptions::quads).
-    bool quads = true;
+    QuadPolicy quads = QuadPolicy::Auto;
     // When not 0: resident memory allowed after loading, and for the process
     // while Embree builds (its memory monitor; see AccelBuildOptions). Going
     // past it is a strahl::Error, not a kill by the kernel.
