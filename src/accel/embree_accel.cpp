@@ -66,6 +66,7 @@ Ray rayFromN(RTCRayN* rays, unsigned N, unsigned i) {
                    RTCRayN_dir_z(rays, N, i));
     ray.tnear = RTCRayN_tnear(rays, N, i);
     ray.tfar = RTCRayN_tfar(rays, N, i);
+    ray.time = RTCRayN_time(rays, N, i);
     return ray;
 }
 
@@ -170,11 +171,19 @@ public:
                      prototypeCount(), " prototypes)");
             RTCGeometry geom = rtcNewGeometry(device(), RTC_GEOMETRY_TYPE_INSTANCE);
             rtcSetGeometryInstancedScene(geom, prototypeScene(instance.prototype));
-            // glm::mat4 is column-major with the affine last row 0 0 0 1.
-            rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR,
-                                    &instance.objectToWorld[0][0]);
-            attach(geom, scene.instanceId(k),
-                   transformBounds(instance.objectToWorld, prototypeBounds[instance.prototype]),
+            // glm::mat4 is column-major with the affine last row 0 0 0 1. A
+            // moving instance has one matrix per time step, equally spaced
+            // over the ray time [0, 1], which Embree interpolates linearly
+            // (core/motion.h does the same for everyone else).
+            if (instance.moves()) {
+                rtcSetGeometryTimeStepCount(geom, static_cast<unsigned>(instance.motion.size()));
+                for (size_t step = 0; step < instance.motion.size(); ++step)
+                    rtcSetGeometryTransform(geom, static_cast<unsigned>(step), RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR,
+                                            &instance.motion[step][0][0]);
+            } else {
+                rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &instance.objectToWorld[0][0]);
+            }
+            attach(geom, scene.instanceId(k), instance.boundsOf(prototypeBounds[instance.prototype]),
                    "adding an instance");
         }
         commit();

@@ -63,7 +63,7 @@ RTCRayHit toEmbree(const Ray& ray) {
     rh.ray.dir_z = ray.dir.z;
     rh.ray.tnear = ray.tnear;
     rh.ray.tfar = ray.tfar;
-    rh.ray.time = 0.0f;
+    rh.ray.time = ray.time;
     rh.ray.mask = 0xFFFFFFFFu;
     rh.ray.id = 0;
     rh.ray.flags = 0;

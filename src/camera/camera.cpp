@@ -54,6 +54,13 @@ Camera::Camera(const CameraFrame& frame, Projection projection, ImageWindow wind
         fail("camera: the focus distance must be positive and finite, got ", focus_);
 }
 
+void Camera::setShutter(const Shutter& shutter) {
+    if (!(0.0f <= shutter.open && shutter.open <= shutter.close && shutter.close <= 1.0f))
+        fail("camera: the shutter must open and close within the frame, 0 <= open <= close <= 1, got [",
+             shutter.open, ", ", shutter.close, "]");
+    shutter_ = shutter;
+}
+
 ImageWindow Camera::windowFromFov(float fovY, float focalDistance, int nx, int ny) {
     ImageWindow w;
     w.t = focalDistance * std::tan(0.5f * fovY);

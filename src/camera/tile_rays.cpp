@@ -11,8 +11,10 @@ Ray TileRayGenerator::sampleRay(int px, int py, int s, Sampler& sampler) const {
     const Vec2 lens = sampler.get2D();
     Vec2 offset(0.0f);  // one sample: the pixel centre
     if (spp_ > 1) offset = filter_.sample(pixel);
-    return camera_.generateRay(static_cast<float>(px) + 0.5f + offset.x,
-                               static_cast<float>(py) + 0.5f + offset.y, lens);
+    Ray ray = camera_.generateRay(static_cast<float>(px) + 0.5f + offset.x,
+                                  static_cast<float>(py) + 0.5f + offset.y, lens);
+    if (motion_) ray.time = camera_.shutter().timeAt(sampler.get1D());
+    return ray;
 }
 
 }  // namespace strahl

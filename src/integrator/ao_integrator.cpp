@@ -35,6 +35,7 @@ Color AoIntegrator::shade(const World& world, const SurfaceHit& hit, Sampler& sa
         const Vec3 dir = local.x * s + local.y * t + local.z * n;
         Ray ray = spawnRay(si.p, si.pError, n, dir);
         ray.tfar = distance_;
+        ray.time = hit.ray().time;
         ++stats.shadowRays;
         if (!world.accel->occluded(ray)) ++open;
     }

@@ -41,14 +41,17 @@ bool fibreExit(const ShadingContext& ctx, const Vec3& dir, Vec3& p, Vec3& normal
 
 Ray ShadingContext::spawn(const Vec3& wi) const {
     Vec3 p, normal;
-    if (fibreExit(*this, wi, p, normal)) return spawnRay(p, si->pError, normal, wi);
-    return spawnRay(si->p, si->pError, ng, wi);
+    Ray ray = fibreExit(*this, wi, p, normal) ? spawnRay(p, si->pError, normal, wi) : spawnRay(si->p, si->pError, ng, wi);
+    ray.time = time;
+    return ray;
 }
 
 Ray ShadingContext::spawnTo(const Vec3& target) const {
     Vec3 p, normal;
-    if (fibreExit(*this, target - si->p, p, normal)) return spawnRayTo(p, si->pError, normal, target);
-    return spawnRayTo(si->p, si->pError, ng, target);
+    Ray ray = fibreExit(*this, target - si->p, p, normal) ? spawnRayTo(p, si->pError, normal, target)
+                                                          : spawnRayTo(si->p, si->pError, ng, target);
+    ray.time = time;
+    return ray;
 }
 
 ShadingContext makeShadingContext(const World& world, const SurfaceHit& hit, float footprint) {
@@ -57,6 +60,7 @@ ShadingContext makeShadingContext(const World& world, const SurfaceHit& hit, flo
     ctx.si = &si;
     ctx.material = &hit.material();
     ctx.wo = -glm::normalize(hit.ray().dir);
+    ctx.time = hit.ray().time;
 
     ShadingPoint& sp = ctx.point;
     sp = shadingPointAt(si, footprint);

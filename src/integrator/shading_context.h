@@ -20,6 +20,7 @@ struct ShadingContext {
     const Material* material = nullptr;
     ShadingPoint point;
     Vec3 wo{0.0f};  // unit, towards where the ray came from
+    float time = 0.0f;  // the ray's: every ray spawned here is cast at it
     Vec3 ng{0.0f};  // unit geometric normal (oriented, see above)
     Vec3 s{0.0f}, t{0.0f}, n{0.0f};  // shading frame, n = shading normal
     Bsdf bsdf;

@@ -1,5 +1,8 @@
 #include "strahl/integrator/world.h"
 
+#include <algorithm>
+
+#include "strahl/core/motion.h"
 #include "strahl/core/transform.h"
 
 namespace strahl {
@@ -49,6 +52,11 @@ SceneInstance::SceneInstance(uint32_t prototypeIndex, const Mat4& toWorld)
       worldToObject(glm::inverse(toWorld)),
       normalToWorld(normalMatrix(toWorld)) {}
 
+SceneInstance::SceneInstance(uint32_t prototypeIndex, std::vector<Mat4> keyframes)
+    : SceneInstance(prototypeIndex, keyframes.front()) {
+    motion = std::move(keyframes);
+}
+
 SurfaceInteraction World::interaction(const Ray& ray, const Hit& hit) const {
     const SceneInstance* inst = instance(hit);
     const SceneShape& s = shape(hit);
@@ -58,8 +66,16 @@ SurfaceInteraction World::interaction(const Ray& ray, const Hit& hit) const {
         return triangleInteraction(s.mesh, hit.primID, hit.u, hit.v);
     };
     if (!inst) return local(ray);
+    if (inst->moves()) {  // placed where the ray's time finds it, as the accelerator did
+        const Mat4 toWorld = keyframeAt(inst->motion, ray.time);
+        return transformInteraction(local(transformRay(glm::inverse(toWorld), ray)), toWorld, normalMatrix(toWorld));
+    }
     return transformInteraction(local(transformRay(inst->worldToObject, ray)), inst->objectToWorld,
                                 inst->normalToWorld);
+}
+
+bool World::hasMotion() const {
+    return std::any_of(instances.begin(), instances.end(), [](const SceneInstance& i) { return i.moves(); });
 }
 
 AccelScene World::accelScene() const {
@@ -69,7 +85,7 @@ AccelScene World::accelScene() const {
     for (const Prototype& p : prototypes) scene.prototypes.push_back(refsOf(p.shapes));
     scene.instances.reserve(instances.size());
     for (const SceneInstance& i : instances)
-        scene.instances.push_back(AccelInstance{i.prototype, i.objectToWorld});
+        scene.instances.push_back(AccelInstance{i.prototype, i.objectToWorld, i.motion});
     return scene;
 }
 
@@ -79,7 +95,8 @@ Bounds3 World::bounds() const {
     prototypeBounds.reserve(prototypes.size());
     for (const Prototype& p : prototypes) prototypeBounds.push_back(boundsOf(p.shapes));
     for (const SceneInstance& i : instances)
-        b.expand(transformBounds(i.objectToWorld, prototypeBounds[i.prototype]));
+        b.expand(i.moves() ? keyframeBounds(i.motion, prototypeBounds[i.prototype])
+                           : transformBounds(i.objectToWorld, prototypeBounds[i.prototype]));
     return b;
 }
 

@@ -122,6 +122,10 @@ void World::prepareLights() {
         addShape(shapes[g], kInvalidId, static_cast<uint32_t>(g), nullptr);
     for (size_t i = 0; i < instances.size(); ++i) {
         const SceneInstance& inst = instances[i];
+        // A moving emitter is somewhere else at every time: its light is found
+        // by the paths that hit it (BSDF sampling), not sampled from a fixed
+        // set of triangles.
+        if (inst.moves()) continue;
         const auto instID = static_cast<uint32_t>(shapes.size() + i);
         const Prototype& proto = prototypes[inst.prototype];
         for (size_t g = 0; g < proto.shapes.size(); ++g)

@@ -29,29 +29,35 @@ namespace strahl {
 
 namespace {
 
-// One instance as the naive loop needs it: the query goes into object space.
+// One instance as the naive loop needs it: the query goes into object space
+// (a moving instance's at the ray's time).
 struct NaiveInstance {
     const std::vector<ShapeRef>* shapes;  // the prototype's
     Mat4 worldToObject;
     uint32_t instID;
+    const AccelInstance* placement;  // its keyframes, when it moves
+
+    Ray toObject(const Ray& ray) const {
+        if (!placement->moves()) return transformRay(worldToObject, ray);
+        return transformRay(glm::inverse(placement->objectToWorldAt(ray.time)), ray);
+    }
 };
 
 class NaiveAccel final : public Accel {
 public:
     explicit NaiveAccel(const AccelScene& scene)
-        : shapes_(scene.shapes), prototypes_(scene.prototypes) {
+        : shapes_(scene.shapes), prototypes_(scene.prototypes), placements_(scene.instances) {
         for (const ShapeRef& shape : shapes_) bounds_.expand(shape.bounds());
         instances_.reserve(scene.instances.size());
         for (size_t k = 0; k < scene.instances.size(); ++k) {
-            const AccelInstance& instance = scene.instances[k];
+            const AccelInstance& instance = placements_[k];
             if (instance.prototype >= prototypes_.size())
                 fail("instance ", k, ": prototype ", instance.prototype, " does not exist (",
                      prototypes_.size(), " prototypes)");
             const std::vector<ShapeRef>& prototype = prototypes_[instance.prototype];
             instances_.push_back(NaiveInstance{&prototype, glm::inverse(instance.objectToWorld),
-                                               scene.instanceId(k)});
-            for (const ShapeRef& shape : prototype)
-                bounds_.expand(transformBounds(instance.objectToWorld, shape.bounds()));
+                                               scene.instanceId(k), &instance});
+            for (const ShapeRef& shape : prototype) bounds_.expand(instance.boundsOf(shape.bounds()));
         }
     }
 
@@ -62,8 +68,7 @@ public:
         for (const NaiveInstance& instance : instances_) {
             // Like Embree: the ray is mapped into object space, t keeps its
             // meaning, and Ng is reported in object space.
-            intersectShapes(*instance.shapes, transformRay(instance.worldToObject, ray),
-                            instance.instID, tfar, closest);
+            intersectShapes(*instance.shapes, instance.toObject(ray), instance.instID, tfar, closest);
         }
         return closest;
     }
@@ -71,7 +76,7 @@ public:
     bool occluded(const Ray& ray) const override {
         if (anyHit(shapes_, ray)) return true;
         for (const NaiveInstance& instance : instances_) {
-            if (anyHit(*instance.shapes, transformRay(instance.worldToObject, ray))) return true;
+            if (anyHit(*instance.shapes, instance.toObject(ray))) return true;
         }
         return false;
     }
@@ -179,6 +184,7 @@ private:
 
     std::vector<ShapeRef> shapes_;
     std::vector<std::vector<ShapeRef>> prototypes_;
+    std::vector<AccelInstance> placements_;  // owned: NaiveInstance points into it
     std::vector<NaiveInstance> instances_;
     Bounds3 bounds_;
 };

@@ -159,7 +159,7 @@ RenderStats renderImage(const World& world, const Camera& camera, const Integrat
     // part of a render of many.
     const TileRayGenerator generator(camera, options.seed,
                                      options.samplePart ? std::max(options.spp, 2) : options.spp,
-                                     options.filter);
+                                     options.filter, world.hasMotion());
 
     RenderStats result;
     result.packetWidth = resolvePacketWidth(options.packets, *world.accel);

@@ -31,8 +31,15 @@ ImageWindow parseWindow(const JsonValue& value) {
     return w;
 }
 
-// The thin lens keys, which every camera takes.
-void parseLens(const JsonValue& v, CameraDesc& c) {
+// The thin lens keys and the shutter, which every camera takes.
+void parseLensAndShutter(const JsonValue& v, CameraDesc& c) {
+    if (auto shutter = v.find("shutter")) {
+        const Vec2 s = shutter->vec2();
+        if (!(0.0f <= s.x && s.x <= s.y && s.y <= 1.0f))
+            shutter->fail("expected [open, close] in frame time with 0 <= open <= close <= 1, got ",
+                          shutter->raw().dump());
+        c.shutter = Shutter{s.x, s.y};
+    }
     if (auto aperture = v.find("aperture_radius")) {
         c.apertureRadius = aperture->number();
         if (!(c.apertureRadius >= 0.0f))
@@ -49,7 +56,7 @@ void parseLens(const JsonValue& v, CameraDesc& c) {
 // (an index among the placed cameras, or a camera's or node's name; default 0).
 // The file is read, and the choice checked against it, when the world is built.
 CameraDesc parseGltfCamera(const JsonValue& v, const fs::path& folder) {
-    v.requireKeys({"gltf", "gltf_camera", "aperture_radius", "focus_distance"});
+    v.requireKeys({"gltf", "gltf_camera", "aperture_radius", "focus_distance", "shutter"});
     const JsonValue file = v.get("gltf");
     GltfCameraChoice choice;
     choice.file = resolveExistingFile(folder, file, "glTF file");
@@ -67,7 +74,7 @@ CameraDesc parseGltfCamera(const JsonValue& v, const fs::path& folder) {
     }
     CameraDesc c;
     c.gltf = std::move(choice);
-    parseLens(v, c);
+    parseLensAndShutter(v, c);
     return c;
 }
 
@@ -76,7 +83,7 @@ CameraDesc parseGltfCamera(const JsonValue& v, const fs::path& folder) {
 CameraDesc parseCamera(const JsonValue& v, const fs::path& folder) {
     if (v.has("gltf")) return parseGltfCamera(v, folder);
     v.requireKeys({"type", "eye", "look_at", "back", "up", "focal_distance", "fov", "window",
-                   "aperture_radius", "focus_distance"});
+                   "aperture_radius", "focus_distance", "shutter"});
     CameraDesc c;
     if (auto type = v.find("type"))
         c.projection = type->oneOf({"perspective", "orthographic"}) == "perspective"
@@ -122,7 +129,7 @@ CameraDesc parseCamera(const JsonValue& v, const fs::path& folder) {
         c.fovYDegrees = degrees;
     }
     if (auto window = v.find("window")) c.window = parseWindow(*window);
-    parseLens(v, c);
+    parseLensAndShutter(v, c);
 
     if (!c.fovYDegrees && !c.window) {
         if (c.projection == Projection::Perspective)

@@ -37,7 +37,7 @@ public:
                  " instances (the limit, 2^24)");
         result_.instances.reserve(total);
         for (const ShapeDesc& shape : desc_.shapes) {
-            if (shape.kind == ShapeKind::Instance) placeShape(shape, Mat4(1.0f));
+            if (shape.kind == ShapeKind::Instance) placeShape(shape, {Mat4(1.0f)});
         }
         return std::move(result_);
     }
@@ -69,19 +69,38 @@ private:
         return counts_[group] = n;
     }
 
-    // An instance shape in a space that `toWorld` maps to the world.
-    void placeShape(const ShapeDesc& shape, const Mat4& toWorld) {
-        const Mat4 arrayToWorld = toWorld * shape.transform;
+    // An instance shape in a space that `toWorld` maps to the world: one
+    // matrix, or the keyframes of a moving instance above it. A product of
+    // linearly interpolated keyframes with fixed matrices is the linear
+    // interpolation of the products, so one moving instance on a path stays
+    // exact; two would not be (their product is quadratic in time).
+    void placeShape(const ShapeDesc& shape, const std::vector<Mat4>& toWorld) {
+        std::vector<Mat4> arrayToWorld;
+        if (!shape.motion.empty()) {
+            if (toWorld.size() > 1)
+                fail(desc_.file.filename().string(), ": ", shape.where,
+                     ": a moving instance inside a moving instance (give the motion to one of them)");
+            for (const Mat4& key : shape.motion) arrayToWorld.push_back(toWorld[0] * key);
+        } else {
+            for (const Mat4& key : toWorld) arrayToWorld.push_back(key * shape.transform);
+        }
         if (shape.placements.empty()) {
             place(shape.group, arrayToWorld);
             return;
         }
-        for (const Mat4& placement : shape.placements) place(shape.group, arrayToWorld * placement);
+        std::vector<Mat4> placed(arrayToWorld.size());
+        for (const Mat4& placement : shape.placements) {
+            for (size_t k = 0; k < arrayToWorld.size(); ++k) placed[k] = arrayToWorld[k] * placement;
+            place(shape.group, placed);
+        }
     }
 
-    void place(size_t group, const Mat4& toWorld) {
-        if (ownShapes_[group])
-            result_.instances.push_back(FlatInstance{prototype(group), toWorld});
+    void place(size_t group, const std::vector<Mat4>& toWorld) {
+        if (ownShapes_[group]) {
+            FlatInstance instance{prototype(group), toWorld[0], {}};
+            if (toWorld.size() > 1) instance.motion = toWorld;
+            result_.instances.push_back(std::move(instance));
+        }
         for (const ShapeDesc& shape : desc_.groups[group].shapes) {
             if (shape.kind == ShapeKind::Instance) placeShape(shape, toWorld);
         }

@@ -24,7 +24,8 @@ inline constexpr uint64_t kMaxInstances = uint64_t(1) << 24;
 
 struct FlatInstance {
     uint32_t prototype = 0;  // index into FlatInstances::prototypeGroups
-    Mat4 objectToWorld{1.0f};
+    Mat4 objectToWorld{1.0f};  // a moving instance's first keyframe
+    std::vector<Mat4> motion;  // empty at rest, else its keyframes (core/motion.h)
 };
 
 struct FlatInstances {
@@ -33,7 +34,8 @@ struct FlatInstances {
 };
 
 // Throws strahl::Error naming the scene file if there would be more than
-// kMaxInstances instances. Expects groups already checked acyclic and at most
+// kMaxInstances instances, or if a moving instance is placed by a moving
+// instance. Expects groups already checked acyclic and at most
 // kMaxGroupNesting deep (the parser does).
 FlatInstances flattenInstances(const SceneDesc& desc);
 

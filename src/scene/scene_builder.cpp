@@ -217,12 +217,17 @@ void placeInstances(const SceneDesc& desc, const scene_detail::FlatInstances& fl
     for (const scene_detail::FlatInstance& instance : flat.instances) {
         // Each transform was checked when parsed, but a product of many can
         // still under- or overflow.
-        const float det = glm::determinant(Mat3(instance.objectToWorld));
-        if (!std::isfinite(det) || det == 0.0f)
-            fail(desc.file.filename().string(), ": an instance of group '",
-                 desc.groups[flat.prototypeGroups[instance.prototype]].name,
-                 "' has a singular or non-finite composed transform");
-        world.instances.emplace_back(instance.prototype, instance.objectToWorld);
+        for (const Mat4& m : instance.motion.empty() ? std::vector<Mat4>{instance.objectToWorld} : instance.motion) {
+            const float det = glm::determinant(Mat3(m));
+            if (!std::isfinite(det) || det == 0.0f)
+                fail(desc.file.filename().string(), ": an instance of group '",
+                     desc.groups[flat.prototypeGroups[instance.prototype]].name,
+                     "' has a singular or non-finite composed transform");
+        }
+        if (instance.motion.empty())
+            world.instances.emplace_back(instance.prototype, instance.objectToWorld);
+        else
+            world.instances.emplace_back(instance.prototype, instance.motion);
     }
 }
 
@@ -407,8 +412,10 @@ Camera buildCamera(const CameraDesc& desc, int width, int height) {
         const float fovDegrees = desc.fovYDegrees.value_or(45.0f);
         window = Camera::windowFromFov(glm::radians(fovDegrees), desc.focalDistance, width, height);
     }
-    return Camera(frame, desc.projection, window, desc.focalDistance, width, height,
+    Camera camera(frame, desc.projection, window, desc.focalDistance, width, height,
                   ThinLens{desc.apertureRadius, desc.focusDistance});
+    camera.setShutter(desc.shutter);
+    return camera;
 }
 
 PixelFilter buildPixelFilter(const FilmDesc& film) {

@@ -178,6 +178,7 @@ CameraDesc resolveCamera(const SceneDesc& desc, const std::vector<GltfCamera>& c
     CameraDesc c;
     c.apertureRadius = desc.camera.apertureRadius;  // the lens is the scene file's
     c.focusDistance = desc.camera.focusDistance;
+    c.shutter = desc.camera.shutter;
     c.eye = g.eye;
     c.back = g.back;
     c.up = g.up;

@@ -149,6 +149,20 @@ scene_detail::Scatter parseScatter(const JsonValue& v) {
     return scatter;
 }
 
+// "motion": keyframes equally spaced over frame time [0, 1], each a transform
+// as "transform" takes. Embree takes at most 129 time steps
+// (RTC_MAX_TIME_STEP_COUNT).
+constexpr size_t kMaxKeyframes = 129;
+
+std::vector<Mat4> parseMotion(const JsonValue& v) {
+    if (!v.raw().is_array() || v.size() < 2 || v.size() > kMaxKeyframes)
+        v.fail("expected an array of 2 to ", kMaxKeyframes, " keyframe transforms, got ",
+               v.raw().is_array() ? concat("an array of ", v.size()) : v.describe());
+    std::vector<Mat4> keys;
+    for (size_t k = 0; k < v.size(); ++k) keys.push_back(parseTransform(v.at(k)));
+    return keys;
+}
+
 ShapeDesc parseShape(const JsonValue& v, const ShapeContext& context) {
     const fs::path& folder = context.folder;
     const std::string& label = context.label;
@@ -158,7 +172,7 @@ ShapeDesc parseShape(const JsonValue& v, const ShapeContext& context) {
     if (!v.raw().is_object()) v.fail("expected an object, got ", v.describe());
     const std::string type = v.get("type").oneOf({"mesh", "implicit", "parametric", "curves", "instance"});
     if (type == "instance") {
-        v.requireKeys({"type", "name", "group", "transform", "placements", "scatter"});
+        v.requireKeys({"type", "name", "group", "transform", "motion", "placements", "scatter"});
         s.kind = ShapeKind::Instance;
         const JsonValue group = v.get("group");
         const std::string groupName = group.string();
@@ -174,6 +188,10 @@ ShapeDesc parseShape(const JsonValue& v, const ShapeContext& context) {
         s.name = s.where;
         if (auto name = v.find("name")) s.name = name->string();
         if (auto transform = v.find("transform")) s.transform = parseTransform(*transform);
+        if (auto motion = v.find("motion")) {
+            if (v.has("transform")) v.fail("give 'transform' (at rest) or 'motion' (keyframes), not both");
+            s.motion = parseMotion(*motion);
+        }
         const auto file = v.find("placements");
         const auto scatter = v.find("scatter");
         if (file && scatter) v.fail("give 'placements' or 'scatter', not both");

@@ -63,8 +63,8 @@ inline Film renderFilm(const SceneDesc& desc, const RenderSetup& setup = {}) {
 }
 
 // The resolved beauty (RGB per pixel) of renderFilm(desc).
-inline std::vector<float> renderBeauty(const SceneDesc& desc) {
-    return renderFilm(desc).resolveBeauty();
+inline std::vector<float> renderBeauty(const SceneDesc& desc, const RenderSetup& setup = {}) {
+    return renderFilm(desc, setup).resolveBeauty();
 }
 
 // The sum of every channel of an image.

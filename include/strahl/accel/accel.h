@@ -19,7 +19,9 @@
 #include "strahl/accel/quad_faces.h"
 #include "strahl/core/bounds.h"
 #include "strahl/core/math.h"
+#include "strahl/core/motion.h"
 #include "strahl/core/packet.h"
+#include "strahl/core/transform.h"
 #include "strahl/core/ray.h"
 #include "strahl/geometry/triangle_mesh.h"
 #include "strahl/geometry/user_shape.h"
@@ -63,7 +65,20 @@ public:
 // One placement of a prototype.
 struct AccelInstance {
     uint32_t prototype = 0;    // index into AccelScene::prototypes
-    Mat4 objectToWorld{1.0f};  // affine and invertible
+    Mat4 objectToWorld{1.0f};  // affine and invertible; a moving instance's first keyframe
+    // Empty for an instance at rest; else its keyframes (at least two, each
+    // affine and invertible), placed at the ray's time (core/motion.h).
+    std::vector<Mat4> motion;
+
+    AccelInstance() = default;
+    AccelInstance(uint32_t prototypeIndex, const Mat4& toWorld, std::vector<Mat4> keyframes = {})
+        : prototype(prototypeIndex), objectToWorld(toWorld), motion(std::move(keyframes)) {}
+
+    bool moves() const { return !motion.empty(); }
+    Mat4 objectToWorldAt(float time) const { return moves() ? keyframeAt(motion, time) : objectToWorld; }
+    Bounds3 boundsOf(const Bounds3& objectBounds) const {
+        return moves() ? keyframeBounds(motion, objectBounds) : transformBounds(objectToWorld, objectBounds);
+    }
 };
 
 // What an accelerator is built over: top-level shapes plus instancing — each

@@ -52,6 +52,15 @@ struct ImageWindow {
     float l = -1.0f, r = 1.0f, b = -1.0f, t = 1.0f;
 };
 
+// When the camera sees, in frame time (core/motion.h: 0 and 1 are a moving
+// instance's first and last keyframe): a camera ray's time is uniform in
+// [open, close]. open == close renders one instant, without motion blur.
+struct Shutter {
+    float open = 0.0f, close = 1.0f;
+
+    float timeAt(float u) const { return open + (close - open) * u; }
+};
+
 // The lens of a depth-of-field camera (see the header comment).
 struct ThinLens {
     float apertureRadius = 0.0f;         // R in world units, >= 0; 0 is a pinhole
@@ -86,6 +95,9 @@ public:
     float focusDistance() const { return focus_; }  // resolved: d if the lens gave none
     int width() const { return nx_; }
     int height() const { return ny_; }
+    // Throws strahl::Error unless 0 <= open <= close <= 1.
+    void setShutter(const Shutter& shutter);
+    const Shutter& shutter() const { return shutter_; }
     Mat4 worldToCamera() const;  // rows u, v, w; camera looks down -z
 
 private:
@@ -97,6 +109,7 @@ private:
     float du_, dv_;  // (r - l) / nx and (b - t) / ny, the window's extent per pixel
     float lensRadius_;
     float focus_;
+    Shutter shutter_;
 };
 
 }  // namespace strahl

@@ -12,7 +12,9 @@
 // two dimension pairs of the sample's low-discrepancy sampler (core/sampler.h,
 // seeded from seed, pixel and sample index only, so images never depend on the
 // thread count or tile order) give the filter offset and the thin-lens point;
-// the sampler, positioned after them, is handed to the integrator.
+// the sampler, positioned after them, is handed to the integrator. In a scene
+// with motion a third pair gives the ray's time within the camera's shutter
+// (so a scene at rest keeps its sampling pattern).
 
 #include <cstdint>
 #include <vector>
@@ -38,9 +40,11 @@ struct CameraPacket {
 
 class TileRayGenerator {
 public:
+    // motion: whether camera rays sample a time in the camera's shutter (the
+    // scene has something moving).
     TileRayGenerator(const Camera& camera, uint64_t seed, int spp,
-                     PixelFilter filter = PixelFilter::box())
-        : camera_(camera), seed_(seed), spp_(spp), filter_(std::move(filter)) {}
+                     PixelFilter filter = PixelFilter::box(), bool motion = false)
+        : camera_(camera), seed_(seed), spp_(spp), filter_(std::move(filter)), motion_(motion) {}
 
     // Sample `s` of pixel (px, py); `sampler` is set to that sample's sampler, positioned after the camera's dimensions.
     Ray sampleRay(int px, int py, int s, Sampler& sampler) const;
@@ -66,6 +70,7 @@ private:
     uint64_t seed_;
     int spp_;
     PixelFilter filter_;
+    bool motion_;
 };
 
 template <int N, typename Wanted>

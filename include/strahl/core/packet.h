@@ -39,7 +39,7 @@ struct alignas(64) RayHitPacket {
         dir_z[lane] = r.dir.z;
         tnear[lane] = r.tnear;
         tfar[lane] = r.tfar;
-        time[lane] = 0.0f;
+        time[lane] = r.time;
         mask[lane] = 0xFFFFFFFFu;
         id[lane] = static_cast<uint32_t>(lane);
         flags[lane] = 0;
@@ -53,6 +53,7 @@ struct alignas(64) RayHitPacket {
         r.dir = Vec3(dir_x[lane], dir_y[lane], dir_z[lane]);
         r.tnear = tnear[lane];
         r.tfar = tfar[lane];
+        r.time = time[lane];
         return r;
     }
     // Writes a lane's hit as Embree would: a miss sets only geomID (tfar and

@@ -21,6 +21,10 @@ struct Ray {
     Vec3 dir{0.0f, 0.0f, -1.0f};
     float tnear = 0.0f;
     float tfar = kInfinity;
+    // When the ray is cast, in frame time: 0 and 1 are a moving instance's
+    // first and last keyframe (core/motion.h); the camera's shutter picks it
+    // for camera rays, and secondary rays inherit it.
+    float time = 0.0f;
 
     Vec3 at(float t) const { return origin + t * dir; }
 };

@@ -31,10 +31,13 @@ public:
         const SceneShape& shape = world_.shape(hit_);
         if (!si_ && shape.isMesh() && shape.mesh.normals.empty()) {
             const SceneInstance* instance = world_.instance(hit_);
-            // An instanced hit's Ng is in object space.
-            const Vec3 ng = instance ? instance->normalToWorld * hit_.Ng : hit_.Ng;
-            const float len = glm::length(ng);
-            if (len > 0.0f) return ng / len;
+            // An instanced hit's Ng is in object space (a moving instance's
+            // map depends on the time: the interaction knows it).
+            if (!instance || !instance->moves()) {
+                const Vec3 ng = instance ? instance->normalToWorld * hit_.Ng : hit_.Ng;
+                const float len = glm::length(ng);
+                if (len > 0.0f) return ng / len;
+            }
         }
         return interaction().Ns;
     }

@@ -65,12 +65,18 @@ struct Prototype {
 
 struct SceneInstance {
     uint32_t prototype = 0;  // index into World::prototypes
-    Mat4 objectToWorld{1.0f};
+    Mat4 objectToWorld{1.0f};  // a moving instance's: its first keyframe's
     Mat4 worldToObject{1.0f};
     Mat3 normalToWorld{1.0f};  // inverse transpose of objectToWorld's linear part
+    // Empty at rest; else the keyframes (core/motion.h) that place it at a
+    // ray's time, and the three matrices above are only its first keyframe's.
+    std::vector<Mat4> motion;
 
     SceneInstance() = default;
     SceneInstance(uint32_t prototypeIndex, const Mat4& toWorld);
+    SceneInstance(uint32_t prototypeIndex, std::vector<Mat4> keyframes);
+
+    bool moves() const { return !motion.empty(); }
 };
 
 struct World {
@@ -140,6 +146,8 @@ struct World {
     // As rendered: every instance counts its prototype's triangles again.
     size_t instancedTriangleCount() const;
     size_t shapeMemoryBytes() const;
+    // Whether some instance moves (camera rays then sample the shutter).
+    bool hasMotion() const;
 
 private:
     // (instID, geomID) of an emitting shape -> offset into areaLightOfPrim_,

@@ -61,6 +61,7 @@ struct CameraDesc {
     std::optional<ImageWindow> window;  // default: fov 45 deg (persp.), [-1,1]^2 (ortho.)
     float apertureRadius = 0.0f;         // thin lens; 0: pinhole
     std::optional<float> focusDistance;  // default: the focal distance
+    Shutter shutter;                     // "shutter": [open, close] in frame time
     // Set: the frame and projection above are still to be read from a glTF
     // file (buildScene fills them and clears this).
     std::optional<GltfCameraChoice> gltf;
@@ -187,6 +188,10 @@ struct ShapeDesc {
     // once per matrix, at transform · placement (group space to the array's,
     // then the array's to its parent's). From "placements" or "scatter".
     std::vector<Mat4> placements;
+    // kind == Instance: when not empty, the instance moves — keyframes (at
+    // least two) equally spaced over frame time [0, 1], each in place of
+    // `transform` (core/motion.h). From "motion".
+    std::vector<Mat4> motion;
     std::string material;            // empty: the file's own materials, else "default"
     std::string where;               // JSON pointer, e.g. "/shapes/0"
 };

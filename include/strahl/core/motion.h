@@ -1,0 +1,31 @@
+#pragma once
+// Keyframed motion: an affine transform given at n >= 2 keyframes equally
+// spaced over frame time [0, 1] (keyframe k at time k / (n - 1)), linearly
+// interpolated between them, entry by entry — what Embree does with a
+// multi-segment motion-blurred instance (rtcSetGeometryTimeStepCount with one
+// matrix per step), so that the naive tracer and shading, which evaluate it
+// here, place the object where Embree traced it.
+//
+// Linear interpolation of matrices moves every point of the object along a
+// straight line between its keyframe positions: exact for translation and
+// scaling, while a rotation is followed along its chords (a point at radius r
+// turning by an angle φ between two keyframes passes r(1 - cos(φ/2)) inside its
+// arc at mid-segment: 1.7 % of r for 30°), so fast spins need more keyframes.
+
+#include <span>
+
+#include "strahl/core/bounds.h"
+#include "strahl/core/math.h"
+
+namespace strahl {
+
+// The transform at frame time `time` (clamped to [0, 1]). Keyframe k covers
+// segment [k, k + 1) of time · (n - 1), as Embree splits it.
+Mat4 keyframeAt(std::span<const Mat4> keys, float time);
+
+// A box holding `bounds` transformed at every time: each point moves on
+// straight segments between its keyframe images, so the keyframes' boxes
+// bound it.
+Bounds3 keyframeBounds(std::span<const Mat4> keys, const Bounds3& bounds);
+
+}  // namespace strahl
