@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "commands.h"
+#include <algorithm>
+
 #include "scene_loading.h"
 #include "strahl/core/process_memory.h"
 
@@ -65,8 +67,10 @@ int runInfo(const Options& o) {
     if (!world.prototypes.empty()) {
         std::vector<size_t> placements(world.prototypes.size(), 0);
         for (const SceneInstance& instance : world.instances) ++placements[instance.prototype];
-        std::printf("groups     %zu, %zu instances\n", world.prototypes.size(),
-                    world.instances.size());
+        const auto moving = std::count_if(world.instances.begin(), world.instances.end(),
+                                          [](const SceneInstance& i) { return i.moves(); });
+        std::printf("groups     %zu, %zu instances%s\n", world.prototypes.size(), world.instances.size(),
+                    moving ? concat(" (", moving, " moving: motion blur over the shutter)").c_str() : "");
         for (size_t p = 0; p < world.prototypes.size(); ++p) {
             std::printf("  group '%s', placed %zu times\n", world.prototypes[p].name.c_str(),
                         placements[p]);

@@ -29,7 +29,7 @@ Vec4 parsePoint(const JsonValue& point, const std::optional<float>& radius) {
 }  // namespace
 
 void parseCurvesShape(const JsonValue& v, const std::filesystem::path& folder, ShapeDesc& s) {
-    v.requireKeys({"type", "name", "material", "transform", "basis", "profile", "points", "strands", "radius",
+    v.requireKeys({"type", "name", "material", "transform", "motion", "basis", "profile", "points", "strands", "radius",
                    "file", "flat_segments", "transform_radius"});
     s.kind = ShapeKind::Curves;
     s.name = s.where;

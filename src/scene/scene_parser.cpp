@@ -207,7 +207,7 @@ ShapeDesc parseShape(const JsonValue& v, const ShapeContext& context) {
         return s;
     }
     if (type == "implicit") {
-        v.requireKeys({"type", "name", "material", "transform", "surface", "box", "cells",
+        v.requireKeys({"type", "name", "material", "transform", "motion", "surface", "box", "cells",
                        "tolerance"});
         s.kind = ShapeKind::Implicit;
         scene_detail::parseImplicitShape(v, s.implicitSurface, s.implicitOptions);
@@ -215,7 +215,7 @@ ShapeDesc parseShape(const JsonValue& v, const ShapeContext& context) {
     } else if (type == "curves") {
         scene_detail::parseCurvesShape(v, folder, s);
     } else if (type == "parametric") {
-        v.requireKeys({"type", "name", "material", "transform", "surface", "mode", "tessellation",
+        v.requireKeys({"type", "name", "material", "transform", "motion", "surface", "mode", "tessellation",
                        "direct", "flip_normals"});
         s.kind = ShapeKind::Parametric;
         s.parametric = scene_detail::parseParametricShape(v, folder);
@@ -223,7 +223,7 @@ ShapeDesc parseShape(const JsonValue& v, const ShapeContext& context) {
         if (auto flip = v.find("flip_normals")) s.flipNormals = flip->boolean();
     } else {
         v.requireKeys({"type", "name", "file", "positions", "indices", "normals", "uvs",
-                       "material", "transform", "flip_normals", "shape_index", "subdivision"});
+                       "material", "transform", "motion", "flip_normals", "shape_index", "subdivision"});
         parseMeshSource(v, folder, label, s);
         if (auto flip = v.find("flip_normals")) s.flipNormals = flip->boolean();
         if (auto index = v.find("shape_index")) {
@@ -248,7 +248,38 @@ ShapeDesc parseShape(const JsonValue& v, const ShapeContext& context) {
     if (s.material.empty() && (s.file.empty() || s.kind == ShapeKind::Curves)) s.material = "default";
 
     if (auto transform = v.find("transform")) s.transform = parseTransform(*transform);
+    if (auto motion = v.find("motion")) {  // wrapped in an instance by wrapMovingShapes
+        if (v.has("transform")) v.fail("give 'transform' (at rest) or 'motion' (keyframes), not both");
+        s.motion = parseMotion(*motion);
+    }
     return s;
+}
+
+// A shape that moves is a moving instance of a group of its own: Embree moves
+// instances, not meshes or user shapes. Each shape with "motion" (other than
+// an instance) becomes the one shape of a new group, named after it, placed
+// by an instance with its keyframes.
+void wrapMovingShapes(SceneDesc& scene) {
+    auto wrap = [&scene](ShapeDesc& shape) {
+        if (shape.kind == ShapeKind::Instance || shape.motion.empty()) return;
+        GroupDesc group;
+        group.name = concat(shape.name, " (moving)");
+        group.where = shape.where;
+        ShapeDesc instance;
+        instance.kind = ShapeKind::Instance;
+        instance.name = shape.name;
+        instance.where = shape.where;
+        instance.motion = std::move(shape.motion);
+        instance.group = scene.groups.size();
+        shape.motion.clear();
+        group.shapes.push_back(std::move(shape));
+        shape = std::move(instance);
+        scene.groups.push_back(std::move(group));
+    };
+    for (ShapeDesc& shape : scene.shapes) wrap(shape);
+    const size_t declared = scene.groups.size();  // (the new groups hold no moving shapes)
+    for (size_t g = 0; g < declared; ++g)
+        for (size_t i = 0; i < scene.groups[g].shapes.size(); ++i) wrap(scene.groups[g].shapes[i]);
 }
 
 // The mesh of a "mesh" shape: a file, or inline arrays.
@@ -392,6 +423,7 @@ SceneDesc scene_detail::parseSceneJson(const nlohmann::json& document, const fs:
     if (!shapes || shapes->size() == 0) fail(label, ": scene has no shapes");
     for (size_t i = 0; i < shapes->size(); ++i)
         scene.shapes.push_back(parseShape(shapes->at(i), context));
+    wrapMovingShapes(scene);
 
     if (auto lights = root.find("lights")) {
         for (size_t i = 0; i < lights->size(); ++i)
