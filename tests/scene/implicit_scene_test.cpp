@@ -537,7 +537,7 @@ TEST(ImplicitSceneErrors, UnknownSurfaceTypeAndKeys) {
               "radius, strength)");
     EXPECT_EQ(errorOf(R"({"type": "sphere"})", R"("boxx": 1)"),
               "scene.json: /shapes/0: unknown key 'boxx' (allowed: type, name, material, "
-              "transform, surface, box, cells, tolerance)");
+              "transform, motion, surface, box, cells, tolerance)");
     EXPECT_EQ(errorOf(R"({"type": "gyroid", "blend": 1})", kBox),
               "scene.json: /shapes/0/surface: unknown key 'blend' (allowed: type, transform, "
               "period, level, thickness)");

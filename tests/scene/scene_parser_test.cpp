@@ -412,7 +412,7 @@ TEST(SceneParser, TopLevelMustBeAnObject) {
 TEST(SceneParser, UnknownKeysNameTheObjectAndTheAllowedKeys) {
     EXPECT_EQ(errorWith(R"("camera": {"fvo": 30})"),
               "scene.json: /camera: unknown key 'fvo' (allowed: type, eye, look_at, back, up, "
-              "focal_distance, fov, window, aperture_radius, focus_distance)");
+              "focal_distance, fov, window, aperture_radius, focus_distance, shutter)");
     EXPECT_EQ(errorWith(R"("film": {"widht": 30})"),
               "scene.json: /film: unknown key 'widht' (allowed: width, height, outputs, aovs, "
               "exr_float, filter, crop)");
@@ -431,7 +431,7 @@ TEST(SceneParser, UnknownKeysNameTheObjectAndTheAllowedKeys) {
               "roughness, roughness_u, roughness_v, distribution, masking)");
     EXPECT_EQ(errorOf(triangleWith(R"("faces": [0, 1, 2])")),
               "scene.json: /shapes/0: unknown key 'faces' (allowed: type, name, file, positions, "
-              "indices, normals, uvs, material, transform, flip_normals, shape_index, subdivision)");
+              "indices, normals, uvs, material, transform, motion, flip_normals, shape_index, subdivision)");
     EXPECT_EQ(
         errorWith(R"("lights": [{"type": "point", "position": [0,0,0], "direction": [1,0,0]}])"),
         "scene.json: /lights/0: unknown key 'direction' (allowed: type, position, intensity)");
