@@ -16,6 +16,7 @@
 #include "spectrum_to_rgb.h"
 #include "strahl/core/bounds.h"
 #include "strahl/core/error.h"
+#include "strahl/core/motion.h"
 #include "strahl/geometry/bilinear_patches.h"
 #include "strahl/meshio/mesh_file.h"
 
@@ -155,7 +156,10 @@ public:
         for (const Shape& shape : s_.shapes) this->shape(shape, true, shapes);
         for (const Instance& instance : s_.instances) {
             json i = {{"type", "instance"}, {"group", group(instance.object)}};
-            i["transform"] = matrixTransform(mirror_ * instance.toWorld);
+            if (instance.toWorldEnd)
+                i["motion"] = motion(instance.toWorld, *instance.toWorldEnd, mirror_);
+            else
+                i["transform"] = matrixTransform(mirror_ * instance.toWorld);
             i["name"] = "ObjectInstance@" + instance.place.text();
             shapes.push_back(i);
         }
@@ -290,6 +294,7 @@ private:
                                                      : std::array<double, 4>{-1.0, 1.0, -1.0 / aspect, 1.0 / aspect};
         std::string type = "perspective";
         double fov = 90.0, lensRadius = 0.0, focus = 1e6;
+        std::array<double, 2> shutter = {0.0, 1.0};  // in pbrt's time
         if (s_.camera) {
             const Entity& c = *s_.camera;
             type = c.type;
@@ -304,7 +309,8 @@ private:
             if (type == "perspective") fov = number(c, "fov", 90.0);
             lensRadius = number(c, "lensradius", 0.0);
             focus = number(c, "focaldistance", 1e6);
-            for (const char* ignored : {"shutteropen", "shutterclose"}) param(c, ignored);
+            shutter = {number(c, "shutteropen", 0.0), number(c, "shutterclose", 1.0)};
+            if (!(shutter[0] <= shutter[1])) unsupported(c, "the shutter must open before it closes");
             if (const Parameter* a = param(c, "frameaspectratio"))
                 bad(*a, "a frame aspect ratio other than the image's is not supported");
             refuseUnread(c);
@@ -326,6 +332,14 @@ private:
         if (lensRadius > 0.0) {
             cam["aperture_radius"] = lensRadius;
             cam["focus_distance"] = focus;
+        }
+        // strahl's frame time runs from the start transform (0) to the end
+        // one (1), TransformTimes in pbrt's time; pbrt clamps times outside.
+        const double t0 = s_.transformStart, t1 = s_.transformEnd;
+        if (t1 > t0) {
+            auto frame = [&](double t) { return std::clamp((t - t0) / (t1 - t0), 0.0, 1.0); };
+            const std::array<double, 2> frameShutter = {frame(shutter[0]), frame(shutter[1])};
+            if (frameShutter != std::array<double, 2>{0.0, 1.0}) cam["shutter"] = {frameShutter[0], frameShutter[1]};
         }
         doc_["camera"] = cam;
     }
@@ -978,6 +992,18 @@ private:
         return indices;
     }
 
+    // An animated CTM (ActiveTransform) as strahl's keyframes: pbrt turns the
+    // rotation between the start and end transforms as a rotation (slerp),
+    // so one keyframe per 10° of it keeps strahl's linear interpolation
+    // within 0.4 % of the radius of pbrt's arc (core/motion.h); `outer`
+    // (the mirror of pbrt_mapping.h) applies to every keyframe.
+    static json motion(const glm::dmat4& start, const glm::dmat4& end, const glm::dmat4& outer) {
+        json keys = json::array();
+        for (const Mat4& key : rotationAwareKeyframes(start, end, glm::radians(10.0)))
+            keys.push_back(matrixTransform(outer * glm::dmat4(key)));
+        return keys;
+    }
+
     glm::dvec3 worldPoint(const Shape& shape, const Parameter& P, uint32_t i) const {
         return transformPoint(shape.toWorld, {P.numbers[3 * size_t(i)], P.numbers[3 * size_t(i) + 1], P.numbers[3 * size_t(i) + 2]});
     }
@@ -1067,7 +1093,11 @@ private:
             unsupported(e, "this shape is not supported (trianglemesh, plymesh, bilinearmesh, sphere, disk, "
                            "cylinder, loopsubdiv)");
         }
-        shape["transform"] = matrixTransform((world ? mirror_ : glm::dmat4(1.0)) * s.toWorld * local);
+        const glm::dmat4 outer = world ? mirror_ : glm::dmat4(1.0);
+        if (s.toWorldEnd)
+            shape["motion"] = motion(s.toWorld * local, *s.toWorldEnd * local, outer);
+        else
+            shape["transform"] = matrixTransform(outer * s.toWorld * local);
         // pbrt's front is the winding's side transformed, turned around by
         // ReverseOrientation, or with shading normals the side they point to
         // (pbrt ignores ReverseOrientation then); strahl keeps the winding's

@@ -359,12 +359,18 @@ private:
             if (state_.active & (1u << i)) state_.ctm[i] = m;
     }
 
-    // The CTM where something is placed; an animated one (ActiveTransform
-    // EndTime with a different transform) is motion blur, not supported.
-    glm::dmat4 placement(const Tokenizer& tokens, const Token& t) const {
+    // The CTM where something is placed that cannot move (the camera, a
+    // light, a shape inside ObjectBegin): an animated one is an error.
+    glm::dmat4 placement(const Tokenizer& tokens, const Token& t, const char* what) const {
         if (state_.ctm[0] != state_.ctm[1])
-            error(tokens, t, std::string(t.text) +
-                                 ": the start and end transforms differ (ActiveTransform): motion blur is not supported yet");
+            error(tokens, t, std::string(t.text) + ": the start and end transforms differ (ActiveTransform): " + what +
+                                 " cannot move in strahl (shapes and object instances can)");
+        return state_.ctm[0];
+    }
+    // The CTM where a shape or an instance is placed, and its end transform
+    // when it is animated (motion blur).
+    glm::dmat4 movingPlacement(std::optional<glm::dmat4>& end) const {
+        if (state_.ctm[0] != state_.ctm[1]) end = state_.ctm[1];
         return state_.ctm[0];
     }
 
@@ -456,8 +462,10 @@ private:
             else if (which.is("All")) state_.active = 3;
             else error(tokens, which, "ActiveTransform: expected StartTime, EndTime or All");
         } else if (d == "TransformTimes") {
-            needNumber(tokens, t);
-            needNumber(tokens, t);
+            const double start = needNumber(tokens, t), end = needNumber(tokens, t);
+            if (!(start <= end)) error(tokens, t, "TransformTimes: the start time must not come after the end time");
+            scene_.transformStart = start;
+            scene_.transformEnd = end;
         } else if (d == "AttributeBegin" || d == "TransformBegin") {
             GraphicsState saved = state_;
             saved.place = at(tokens, t);
@@ -507,7 +515,7 @@ private:
         } else if (d == "Camera") {
             requireWorld(tokens, t, false);
             Entity e = entity(tokens, t);
-            scene_.cameraFromWorld = placement(tokens, t);
+            scene_.cameraFromWorld = placement(tokens, t, "the camera");
             coordinateSystems_["camera"] = glm::inverse(scene_.cameraFromWorld);
             scene_.camera = std::move(e);
         } else if (d == "Film" || d == "Sampler" || d == "Integrator" || d == "PixelFilter" || d == "Accelerator") {
@@ -585,7 +593,7 @@ private:
             Light light;
             light.entity = entity(tokens, t);
             light.entity.params.addDefaults(state_.lightDefaults);
-            light.toWorld = placement(tokens, t);
+            light.toWorld = placement(tokens, t, "a light");
             scene_.lights.push_back(std::move(light));
         } else if (d == "AreaLightSource") {
             requireWorld(tokens, t, true);
@@ -598,7 +606,7 @@ private:
             Shape s;
             s.entity = entity(tokens, t);
             s.entity.params.addDefaults(state_.shapeDefaults);
-            s.toWorld = placement(tokens, t);
+            s.toWorld = currentObject_ ? placement(tokens, t, "a shape inside ObjectBegin") : movingPlacement(s.toWorldEnd);
             s.reverseOrientation = state_.reverseOrientation;
             s.material = state_.material;
             s.materialName = state_.namedMaterial;
@@ -637,7 +645,9 @@ private:
             requireWorld(tokens, t, true);
             if (currentObject_) error(tokens, t, "ObjectInstance inside ObjectBegin: instances cannot be nested (as in pbrt-v4)");
             const std::string name = needString(tokens, t);
-            scene_.instances.push_back({name, placement(tokens, t), at(tokens, t)});
+            Instance instance{name, glm::dmat4(1.0), at(tokens, t), std::nullopt};
+            instance.toWorld = movingPlacement(instance.toWorldEnd);
+            scene_.instances.push_back(std::move(instance));
         } else {
             error(tokens, t, "unknown directive '" + std::string(d) + "'");
         }

@@ -68,6 +68,9 @@ struct Texture {
 struct Shape {
     Entity entity;
     glm::dmat4 toWorld{1.0};   // pbrt's render-from-object (or object-from-shape inside ObjectBegin)
+    // An animated CTM (ActiveTransform EndTime): the transform at the end
+    // time, `toWorld` being the start's. Top-level shapes only.
+    std::optional<glm::dmat4> toWorldEnd;
     bool reverseOrientation = false;
     int material = -1;          // index into Scene::materials
     std::string materialName;   // NamedMaterial's name, resolved into `material` at the end
@@ -89,11 +92,13 @@ struct Instance {
     std::string object;
     glm::dmat4 toWorld{1.0};
     Place place;
+    std::optional<glm::dmat4> toWorldEnd;  // animated, as Shape::toWorldEnd
 };
 
 struct Scene {
     std::optional<Entity> camera, film, sampler, integrator, filter;
     glm::dmat4 cameraFromWorld{1.0};
+    double transformStart = 0.0, transformEnd = 1.0;  // TransformTimes: when the start and end CTMs hold
     std::vector<Entity> materials;  // index 0 is pbrt's default, diffuse 0.5
     std::map<std::string, int> namedMaterials;  // name -> index in materials
     std::vector<Entity> areaLights;
@@ -111,8 +116,8 @@ struct Scene {
 // values, an unbalanced AttributeBegin/End or ObjectBegin/End, a missing or
 // cyclic Include, an unknown named material, coordinate system or object,
 // and for the features of the language strahl cannot render the same
-// (motion blur through ActiveTransform, participating media, colour spaces
-// other than sRGB), naming the directive.
+// (a moving camera or light, animated shapes inside ObjectBegin,
+// participating media, colour spaces other than sRGB), naming the directive.
 // `file` anchors relative names; `label` names it in messages.
 Scene readScene(const std::string& text, const std::filesystem::path& file, const std::string& label);
 

@@ -27,6 +27,7 @@
 #include "scene_json.h"
 #include "transform_parser.h"
 #include "strahl/core/error.h"
+#include "strahl/core/motion.h"
 #include "strahl/geometry/loop_subdivision.h"
 #include "strahl/meshio/mesh_format.h"
 #include "strahl/scene/scene_desc.h"
@@ -150,10 +151,7 @@ scene_detail::Scatter parseScatter(const JsonValue& v) {
 }
 
 // "motion": keyframes equally spaced over frame time [0, 1], each a transform
-// as "transform" takes. Embree takes at most 129 time steps
-// (RTC_MAX_TIME_STEP_COUNT).
-constexpr size_t kMaxKeyframes = 129;
-
+// as "transform" takes; at most kMaxKeyframes (Embree's limit).
 std::vector<Mat4> parseMotion(const JsonValue& v) {
     if (!v.raw().is_array() || v.size() < 2 || v.size() > kMaxKeyframes)
         v.fail("expected an array of 2 to ", kMaxKeyframes, " keyframe transforms, got ",

@@ -61,5 +61,28 @@ TEST(Motion, KeyframeBoundsHoldEveryTime) {
     }
 }
 
+TEST(Motion, RotationAwareKeyframesTurnOnTheArc) {
+    const glm::dmat4 start = glm::translate(glm::dmat4(1.0), glm::dvec3(0, 0, 1));
+    const glm::dmat4 end = glm::rotate(glm::translate(glm::dmat4(1.0), glm::dvec3(4, 0, 1)), glm::radians(120.0),
+                                       glm::dvec3(0, 0, 1)) *
+                           glm::scale(glm::dmat4(1.0), glm::dvec3(2.0));
+    const std::vector<Mat4> keys = rotationAwareKeyframes(start, end, glm::radians(15.0));
+    ASSERT_EQ(keys.size(), 9u) << "120 degrees in steps of at most 15";
+    EXPECT_EQ(keys.front(), Mat4(start));
+    EXPECT_EQ(keys.back(), Mat4(end));
+    for (size_t k = 0; k < keys.size(); ++k) {
+        const float f = float(k) / 8.0f;
+        const Vec3 x = transformVector(keys[k], Vec3(1, 0, 0));
+        EXPECT_NEAR(glm::length(x), 1.0f + f, 1e-5f) << "the scale grows linearly";
+        EXPECT_NEAR(std::atan2(x.y, x.x), glm::radians(120.0f * f), 1e-5f) << "the angle too";
+        EXPECT_NEAR(transformPoint(keys[k], Vec3(0.0f)).x, 4.0f * f, 1e-5f);
+    }
+    // Without rotation the two ends suffice; a mirror has no rotation to
+    // turn, and keeps its two ends too.
+    EXPECT_EQ(rotationAwareKeyframes(start, glm::translate(start, glm::dvec3(1, 2, 3)), 0.1).size(), 2u);
+    const glm::dmat4 mirror = glm::scale(glm::dmat4(1.0), glm::dvec3(-1, 1, 1));
+    EXPECT_EQ(rotationAwareKeyframes(mirror, glm::rotate(mirror, 2.0, glm::dvec3(0, 0, 1)), 0.1).size(), 2u);
+}
+
 }  // namespace
 }  // namespace strahl

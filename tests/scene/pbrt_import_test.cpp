@@ -446,8 +446,16 @@ TEST(PbrtImport, MalformedOrUnsupportedInputIsOneErrorWithItsLine) {
                 HasSubstr("scene.pbrt:6: MakeNamedMedium: participating media are not supported"));
     EXPECT_THAT(errorOf(scene("LightSource \"goniometric\"\n" + kTriangle)),
                 HasSubstr("scene.pbrt:6: LightSource \"goniometric\": this light is not supported"));
-    EXPECT_THAT(errorOf(scene("ActiveTransform EndTime\nTranslate 1 0 0\nActiveTransform All\n" + kTriangle)),
-                HasSubstr("scene.pbrt:9: Shape: the start and end transforms differ (ActiveTransform): motion blur"));
+    EXPECT_THAT(errorOf(scene("ActiveTransform EndTime\nTranslate 1 0 0\nActiveTransform All\n"
+                              "LightSource \"point\"\n" + kTriangle)),
+                HasSubstr("scene.pbrt:9: LightSource: the start and end transforms differ (ActiveTransform): a light "
+                          "cannot move in strahl (shapes and object instances can)"));
+    EXPECT_THAT(errorOf(scene("ObjectBegin \"o\"\nActiveTransform EndTime\nTranslate 1 0 0\n" + kTriangle +
+                              "ObjectEnd\n")),
+                HasSubstr("scene.pbrt:9: Shape: the start and end transforms differ (ActiveTransform): a shape inside "
+                          "ObjectBegin cannot move"));
+    EXPECT_THAT(errorOf("ActiveTransform EndTime\nTranslate 1 0 0\nActiveTransform All\n" + scene(kTriangle)),
+                HasSubstr("Camera: the start and end transforms differ (ActiveTransform): the camera cannot move"));
     EXPECT_THAT(errorOf(scene(kTriangle, "Camera \"realistic\"")),
                 HasSubstr("Camera \"realistic\": only the perspective and orthographic cameras are supported"));
     EXPECT_THAT(errorOf("Camera \"perspective\"\n" + kTriangle), HasSubstr("Shape must come after WorldBegin"));
@@ -471,6 +479,50 @@ void writeUpperHemisphereMap(const fs::path& file, int n) {
     ASSERT_TRUE(out && out->open(file.string(), OIIO::ImageSpec(n, n, 3, OIIO::TypeDesc::FLOAT)));
     ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
     out->close();
+}
+
+// pbrt's animated transforms (ActiveTransform) become keyframes over strahl's
+// frame time, which runs from TransformTimes' start to its end; pbrt turns a
+// rotation as a rotation, so a quarter turn gets a keyframe per 10 degrees,
+// each pbrt's interpolation at its time. The shutter maps into frame time.
+TEST(PbrtImport, AnimatedTransformsBecomeKeyframesAndTheShutterFrameTime) {
+    const std::string world =
+        "AttributeBegin\nActiveTransform StartTime\nTranslate 0 0 1\nActiveTransform EndTime\n"
+        "Translate 2 0 1\nRotate 90 0 0 1\nActiveTransform All\nShape \"sphere\" \"float radius\" 0.5\n"
+        "AttributeEnd\nAttributeBegin\nActiveTransform EndTime\nTranslate 0 1 0\nActiveTransform All\n"
+        "ObjectInstance \"thing\"\nAttributeEnd\n"
+        "ObjectBegin \"thing\"\n" + kTriangle + "ObjectEnd\n";
+    const json doc = document("LookAt 0 0 5  0 0 0  0 1 0\nTransformTimes 1 3\n"
+                              "Camera \"perspective\" \"float shutteropen\" 1.5 \"float shutterclose\" 4\n"
+                              "Film \"rgb\" \"integer xresolution\" 64 \"integer yresolution\" 32\nWorldBegin\n" +
+                              world);
+    const json& camera = doc["camera"];
+    ASSERT_TRUE(camera.contains("shutter")) << camera.dump();
+    EXPECT_DOUBLE_EQ(camera["shutter"][0].get<double>(), 0.25);  // (1.5 - 1) / (3 - 1)
+    EXPECT_DOUBLE_EQ(camera["shutter"][1].get<double>(), 1.0);   // clamped, as pbrt clamps
+
+    const json* sphere = nullptr;
+    const json* instance = nullptr;
+    for (const json& shape : doc["shapes"]) {
+        if (shape["type"] == "instance") instance = &shape;
+        else if (shape.contains("motion")) sphere = &shape;
+    }
+    ASSERT_TRUE(sphere && instance);
+    EXPECT_FALSE(sphere->contains("transform"));
+    const json& keys = (*sphere)["motion"];
+    ASSERT_EQ(keys.size(), 10u) << "90 degrees in steps of 10";
+    // Keyframe k is pbrt's interpolation at k/9: the centre moves on a line
+    // (mirrored in x: pbrt_mapping.h), the sphere turns 10 degrees a step.
+    for (size_t k = 0; k < keys.size(); ++k) {
+        const glm::dmat4 m = matrixOf(json{{"transform", keys[k]}});
+        const double f = double(k) / 9.0;
+        expectNear(glm::dvec3(m[3]), {-2.0 * f, 0.0, 1.0}, 1e-6);
+        const glm::dvec3 axis = glm::dmat3(m) * glm::dvec3(1, 0, 0);
+        EXPECT_NEAR(glm::length(axis), 0.5, 1e-6) << "a rotation, not a chord";
+        EXPECT_NEAR(std::atan2(axis.y, -axis.x), glm::radians(90.0 * f), 1e-6);
+    }
+    // A pure translation needs no more than its two ends.
+    EXPECT_EQ((*instance)["motion"].size(), 2u);
 }
 
 TEST(PbrtImport, AnImageInfiniteLightIsAnEqualAreaMapInTheLightsFrame) {

@@ -13,6 +13,7 @@
 // arc at mid-segment: 1.7 % of r for 30°), so fast spins need more keyframes.
 
 #include <span>
+#include <vector>
 
 #include "strahl/core/bounds.h"
 #include "strahl/core/math.h"
@@ -22,6 +23,18 @@ namespace strahl {
 // The transform at frame time `time` (clamped to [0, 1]). Keyframe k covers
 // segment [k, k + 1) of time · (n - 1), as Embree splits it.
 Mat4 keyframeAt(std::span<const Mat4> keys, float time);
+
+// A motion given by its start and end transforms that turns rotations as
+// rotations (pbrt-v4's AnimatedTransform; Shoemake and Duff 1992): each is
+// split as M = T R S — translation, the rotation of M's polar decomposition,
+// and the stretch S = R⁻¹ M — and at fraction f, T and S are interpolated
+// linearly and R by spherical linear interpolation. Sampled as keyframes
+// (first `start`, last `end`), one per at most maxStepRadians of rotation
+// (at least 2, at most kMaxKeyframes), so that keyframeAt follows the arc to
+// within its chord error. A transform that mirrors (negative determinant) has
+// no rotation quaternion: then just {start, end}.
+inline constexpr size_t kMaxKeyframes = 129;  // Embree's RTC_MAX_TIME_STEP_COUNT
+std::vector<Mat4> rotationAwareKeyframes(const glm::dmat4& start, const glm::dmat4& end, double maxStepRadians);
 
 // A box holding `bounds` transformed at every time: each point moves on
 // straight segments between its keyframe images, so the keyframes' boxes
