@@ -24,7 +24,8 @@
 //    filter turn every quad hit back into a triangle hit.
 //  - A CurveSet is the one user shape Embree does not call back for: it
 //    becomes Embree's own curve geometry of its type and basis, its control
-//    points (x, y, z, r) and segment starts shared as they are. Its
+//    points (x, y, z, r) and segment starts shared as they are (an oriented
+//    ribbon's normals copied). Its
 //    intersect() is the naive tracer's independent reference.
 //  - Vertex and index buffers are shared with Embree (zero copy) when the
 //    mesh's position vector has the spare element Embree's 16-byte vertex loads
@@ -199,6 +200,15 @@ private:
     }
 
     static RTCGeometryType curveGeometryType(CurveType type, CurveBasis basis) {
+        if (type == CurveType::Oriented) {
+            switch (basis) {
+                case CurveBasis::Bezier: return RTC_GEOMETRY_TYPE_NORMAL_ORIENTED_BEZIER_CURVE;
+                case CurveBasis::BSpline: return RTC_GEOMETRY_TYPE_NORMAL_ORIENTED_BSPLINE_CURVE;
+                case CurveBasis::CatmullRom: return RTC_GEOMETRY_TYPE_NORMAL_ORIENTED_CATMULL_ROM_CURVE;
+                case CurveBasis::Linear: break;  // CurveSet refuses it
+            }
+            fail("oriented curves need a cubic basis");
+        }
         const bool round = type == CurveType::Round;
         switch (basis) {
             case CurveBasis::Linear:
@@ -225,6 +235,13 @@ private:
         rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, desc.segments.data(), 0,
                                    sizeof(uint32_t), desc.segments.size());
         if (desc.type == CurveType::Flat) rtcSetGeometryTessellationRate(geom, float(desc.flatSegments));
+        if (desc.type == CurveType::Oriented) {
+            // Copied: Embree reads FLOAT3 buffers with 16-byte loads, which
+            // the normals' vector has no spare element for.
+            void* normals = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_NORMAL, 0, RTC_FORMAT_FLOAT3, sizeof(Vec3),
+                                                    desc.normals.size());
+            if (normals) std::memcpy(normals, desc.normals.data(), desc.normals.size() * sizeof(Vec3));
+        }
         return geom;
     }
 

@@ -360,4 +360,89 @@ bool intersectFlatLinear(const DRay& ray, const DVec4& p0, const DVec4& p1, RefH
     return true;
 }
 
+// ---- oriented ------------------------------------------------------------------
+
+bool orientedFrame(const DVec4 b[4], const DVec4 nb[4], OrientedFrame& frame) {
+    // r k and its derivative at one end, from the curve and the normal there.
+    const auto across = [](const Eval& c, const Eval& n, DVec3& rk, DVec3& drk) {
+        const DVec3 bt = glm::cross(xyz(n.p), xyz(c.dp));
+        // Embree takes C'' as zero here (its documentation: large
+        // curvatures would otherwise thicken the ribbon).
+        const DVec3 dbt = glm::cross(xyz(n.dp), xyz(c.dp));
+        const double len = glm::length(bt);
+        if (!(len > 0.0)) return false;
+        const DVec3 k = bt / len;
+        const DVec3 dk = (dbt - k * glm::dot(k, dbt)) / len;
+        rk = c.p.w * k;
+        drk = c.dp.w * k + c.p.w * dk;
+        return true;
+    };
+    DVec3 rk0, drk0, rk1, drk1;
+    if (!across(evalBezier(b, 0.0), evalBezier(nb, 0.0), rk0, drk0) ||
+        !across(evalBezier(b, 1.0), evalBezier(nb, 1.0), rk1, drk1))
+        return false;
+    frame.w[0] = rk0;
+    frame.w[1] = rk0 + drk0 / 3.0;
+    frame.w[2] = rk1 - drk1 / 3.0;
+    frame.w[3] = rk1;
+    return true;
+}
+
+DVec3 orientedWidth(const DVec4 b[4], const OrientedFrame& frame, double u, DVec3* derivative) {
+    (void)b;  // W is its own Bézier; b stays in the signature for symmetry with C
+    const double v = 1.0 - u;
+    const DVec3* w = frame.w;
+    if (derivative)
+        *derivative = 3.0 * (v * v * (w[1] - w[0]) + 2.0 * u * v * (w[2] - w[1]) + u * u * (w[3] - w[2]));
+    return v * v * v * w[0] + 3.0 * u * v * v * w[1] + 3.0 * u * u * v * w[2] + u * u * u * w[3];
+}
+
+bool intersectOrientedCubic(const DRay& ray, const DVec4 b[4], const OrientedFrame& frame, RefHit& hit) {
+    // f(u) = (C(u) - o) . (W(u) x d): zero where the ray meets the line across.
+    const auto f = [&](double u) {
+        return glm::dot(xyz(evalBezier(b, u).p) - ray.origin, glm::cross(orientedWidth(b, frame, u), ray.dir));
+    };
+    constexpr int kIntervals = 128;  // a degree-6 polynomial: two roots closer than 1/128 are a graze
+    bool found = false;
+    double tBest = ray.tfar;
+    double u0 = 0.0, f0 = f(0.0);
+    for (int i = 1; i <= kIntervals; ++i) {
+        const double u1 = double(i) / kIntervals, f1 = f(u1);
+        if ((f0 <= 0.0) != (f1 <= 0.0) || f0 == 0.0) {
+            double lo = u0, hi = u1, flo = f0;
+            for (int k = 0; k < 60 && flo != 0.0; ++k) {
+                const double mid = 0.5 * (lo + hi), fm = f(mid);
+                if ((fm <= 0.0) == (flo <= 0.0)) {
+                    lo = mid;
+                    flo = fm;
+                } else {
+                    hi = mid;
+                }
+            }
+            const double u = flo == 0.0 ? lo : 0.5 * (lo + hi);
+            const Eval e = evalBezier(b, u);
+            DVec3 dW;
+            const DVec3 W = orientedWidth(b, frame, u, &dW);
+            const DVec3 q = xyz(e.p) - ray.origin, wd = glm::cross(W, ray.dir);
+            const double wd2 = glm::dot(wd, wd);
+            if (wd2 > 0.0) {
+                // o + t d = C + s W: cross with W gives t, with d gives s.
+                const double t = glm::dot(glm::cross(q, W), glm::cross(ray.dir, W)) / wd2;
+                const double s = -glm::dot(glm::cross(q, ray.dir), wd) / wd2;
+                if (std::abs(s) <= 1.0 && t > ray.tnear && t < tBest) {
+                    tBest = t;
+                    found = true;
+                    hit.t = t;
+                    hit.u = u;
+                    hit.v = s;
+                    hit.Ng = glm::cross(xyz(e.dp) + s * dW, W);
+                }
+            }
+        }
+        u0 = u1;
+        f0 = f1;
+    }
+    return found;
+}
+
 }  // namespace strahl::curve

@@ -45,7 +45,14 @@ const char* curveBasisName(CurveBasis basis) {
     return "?";
 }
 
-const char* curveTypeName(CurveType type) { return type == CurveType::Round ? "round" : "flat"; }
+const char* curveTypeName(CurveType type) {
+    switch (type) {
+        case CurveType::Round: return "round";
+        case CurveType::Flat: return "flat";
+        case CurveType::Oriented: return "oriented";
+    }
+    return "?";
+}
 
 int curveBasisPoints(CurveBasis basis) { return basis == CurveBasis::Linear ? 2 : 4; }
 
@@ -82,11 +89,31 @@ CurveSet::CurveSet(CurveSetDesc desc) : desc_(std::move(desc)) {
         if (!std::isfinite(p.w) || p.w < 0.0f)
             fail("curves '", name, "': control point ", i, " has radius ", p.w, " (must be finite and >= 0)");
     }
+    if (desc_.type == CurveType::Oriented) {
+        if (desc_.basis == CurveBasis::Linear)
+            fail("curves '", name, "': oriented ribbons need a cubic basis (bezier, bspline or catmull_rom)");
+        if (desc_.normals.size() != desc_.points.size())
+            fail("curves '", name, "': an oriented ribbon needs one normal per control point (", desc_.points.size(),
+                 " points, ", desc_.normals.size(), " normals)");
+        for (size_t i = 0; i < desc_.normals.size(); ++i)
+            if (!isFinite(desc_.normals[i]) || !(glm::length(desc_.normals[i]) > 0.0f))
+                fail("curves '", name, "': normal ", i, " is zero or not finite");
+    } else if (!desc_.normals.empty()) {
+        fail("curves '", name, "': normals are only for oriented ribbons");
+    }
     const uint64_t span = static_cast<uint64_t>(curveBasisPoints(desc_.basis));
     for (size_t s = 0; s < desc_.segments.size(); ++s) {
         if (desc_.segments[s] + span > desc_.points.size())
             fail("curves '", name, "': segment ", s, " starts at control point ", desc_.segments[s], " and needs ",
                  span, ", but there are ", desc_.points.size());
+        if (desc_.type == CurveType::Oriented) {
+            DVec4 b[4];
+            bezierOf(static_cast<uint32_t>(s), b);
+            curve::OrientedFrame frame;
+            if (!orientedFrameOf(static_cast<uint32_t>(s), b, frame))
+                fail("curves '", name, "': segment ", s,
+                     " has a normal parallel to the curve at an end (an oriented ribbon lies across its normals)");
+        }
         if (desc_.basis == CurveBasis::CatmullRom) {
             DVec4 b[4];
             bezierOf(static_cast<uint32_t>(s), b);
@@ -104,8 +131,20 @@ bool CurveSet::hasLeftNeighbour(uint32_t prim) const {
 
 void CurveSet::bezierOf(uint32_t prim, DVec4 b[4]) const {
     const Vec4* q = desc_.points.data() + desc_.segments[prim];
-    const auto d = [&](int i) { return DVec4(q[i]); };
-    switch (desc_.basis) {
+    toBezier(desc_.basis, [&](int i) { return DVec4(q[i]); }, b);
+}
+
+bool CurveSet::orientedFrameOf(uint32_t prim, const DVec4 b[4], curve::OrientedFrame& frame) const {
+    // The normal curve in the same basis, at the segment's ends.
+    const Vec3* n = desc_.normals.data() + desc_.segments[prim];
+    DVec4 nb[4];
+    toBezier(desc_.basis, [&](int i) { return DVec4(DVec3(n[i]), 0.0); }, nb);
+    return curve::orientedFrame(b, nb, frame);
+}
+
+template <class ControlPoint>
+void CurveSet::toBezier(CurveBasis basis, const ControlPoint& d, DVec4 b[4]) {
+    switch (basis) {
         case CurveBasis::Linear:
             b[0] = d(0), b[3] = d(1);
             b[1] = (2.0 * d(0) + d(1)) / 3.0, b[2] = (d(0) + 2.0 * d(1)) / 3.0;
@@ -131,7 +170,8 @@ void CurveSet::bezierOf(uint32_t prim, DVec4 b[4]) const {
 
 Bounds3 CurveSet::primitiveBounds(uint32_t prim) const {
     // Convex hull of the Bézier points, grown by the largest radius (the
-    // radius is a Bézier too, so it never exceeds its largest coefficient).
+    // radius is a Bézier too, so it never exceeds its largest coefficient;
+    // an oriented ribbon's edges b_i -+ r_i k lie within it as well).
     DVec4 b[4];
     bezierOf(prim, b);
     DVec3 lo = xyz(b[0]), hi = lo;
@@ -155,8 +195,14 @@ bool CurveSet::intersect(const Ray& ray, uint32_t prim, Hit& hit) const noexcept
     } else {
         DVec4 b[4];
         bezierOf(prim, b);
-        found = desc_.type == CurveType::Round ? curve::intersectRoundCubic(r, b, h)
-                                               : curve::intersectFlatCubic(r, b, desc_.flatSegments, h);
+        curve::OrientedFrame frame;
+        switch (desc_.type) {
+            case CurveType::Round: found = curve::intersectRoundCubic(r, b, h); break;
+            case CurveType::Flat: found = curve::intersectFlatCubic(r, b, desc_.flatSegments, h); break;
+            case CurveType::Oriented:
+                found = orientedFrameOf(prim, b, frame) && curve::intersectOrientedCubic(r, b, frame, h);
+                break;
+        }
     }
     // The float t must still lie inside (tnear, tfar) after rounding (and be
     // a float at all: a ray of a tiny direction can meet a curve beyond it).
@@ -204,6 +250,21 @@ SurfaceInteraction CurveSet::interaction(const Ray& ray, const Hit& hit) const {
         Ns = Ng;
         si.fibreAxis = Vec3(xyz(e.p));
         si.fibreRadius = float(e.p.w);
+    } else if (desc_.type == CurveType::Oriented) {
+        // The ribbon's own surface: s from the hit point (whatever v the
+        // tracer reported), the normal S_u x S_s.
+        e = curve::evalBezier(b, u);
+        curve::OrientedFrame frame;
+        orientedFrameOf(hit.primID, b, frame);  // checked when the set was made
+        DVec3 dW;
+        const DVec3 W = curve::orientedWidth(b, frame, u, &dW);
+        const double w2 = glm::dot(W, W);
+        const double s = w2 > 0.0 ? std::clamp(glm::dot(x - xyz(e.p), W) / w2, -1.0, 1.0) : 0.0;
+        x = xyz(e.p) + s * W;
+        const DVec3 n = glm::cross(xyz(e.dp) + s * dW, W);
+        Ng = glm::length(n) > 0.0 ? glm::normalize(n) : -d;
+        Ns = Ng;
+        v01 = 0.5 * (s + 1.0);
     } else {
         // A ribbon facing the ray: the geometric normal faces it; the shading
         // normal turns across the ribbon as a cylinder's would, so that a flat
@@ -243,7 +304,8 @@ std::string CurveSet::describe() const {
 }
 
 size_t CurveSet::memoryBytes() const {
-    return desc_.points.capacity() * sizeof(Vec4) + desc_.segments.capacity() * sizeof(uint32_t);
+    return desc_.points.capacity() * sizeof(Vec4) + desc_.segments.capacity() * sizeof(uint32_t) +
+           desc_.normals.capacity() * sizeof(Vec3);
 }
 
 }  // namespace strahl

@@ -13,7 +13,12 @@
 //  - flat: a ribbon that always faces the ray: `flatSegments` straight pieces
 //    per segment, each a quad C(u) ± r(u)·n(u) with n ⟂ the ray and the
 //    curve, at width 2r. Hits closer to the ray's origin than 2r are ignored
-//    (Embree's self-intersection avoidance for flat curves).
+//    (Embree's self-intersection avoidance for flat curves);
+//  - oriented (cubic bases only): a ribbon lying across given normals, for
+//    grass blades and pbrt's "ribbon" curves — Embree's normal-oriented
+//    surface C(u) + s·W(u), s ∈ [−1, 1], whose width direction turns from
+//    the one at the segment's start to the one at its end (curve_math.h has
+//    the construction).
 //
 // Control points carry (x, y, z, radius). A segment is named by the index of
 // its first control point: 2 consecutive points for the linear basis, 4 for
@@ -37,11 +42,15 @@
 
 namespace strahl {
 
+namespace curve {
+struct OrientedFrame;  // geometry-internal (src/geometry/curve_math.h)
+}
+
 enum class CurveBasis { Linear, Bezier, BSpline, CatmullRom };
-enum class CurveType { Round, Flat };
+enum class CurveType { Round, Flat, Oriented };
 
 const char* curveBasisName(CurveBasis basis);  // "linear", "bezier", "bspline", "catmull_rom"
-const char* curveTypeName(CurveType type);     // "round", "flat"
+const char* curveTypeName(CurveType type);     // "round", "flat", "oriented"
 // Control points a segment spans: 2 (linear) or 4.
 int curveBasisPoints(CurveBasis basis);
 
@@ -52,6 +61,9 @@ struct CurveSetDesc {
     std::vector<Vec4> points;         // x, y, z, radius
     std::vector<uint32_t> segments;   // index of each segment's first point
     int flatSegments = 4;             // straight pieces per segment of a flat curve (1..64)
+    // Oriented curves only: one normal per control point, interpolated in
+    // the curve's basis; the ribbon lies across it (docs/geometry.md).
+    std::vector<Vec3> normals;
 };
 
 // The segment list of strands given as point counts: strand k spans its
@@ -87,6 +99,12 @@ public:
     void bezierOf(uint32_t prim, glm::dvec4 out[4]) const;
 
 private:
+    // Control points d(0..3) of `basis` as Bézier points.
+    template <class ControlPoint>
+    static void toBezier(CurveBasis basis, const ControlPoint& d, glm::dvec4 b[4]);
+    // An oriented segment's directions across (false: a normal along the curve).
+    bool orientedFrameOf(uint32_t prim, const glm::dvec4 b[4], curve::OrientedFrame& frame) const;
+
     CurveSetDesc desc_;
 };
 
