@@ -1122,7 +1122,8 @@ private:
     // elevated, and the radius control values of each segment are those of
     // the linear width (a Bézier reproduces a linear function). pbrt's
     // "cylinder" type, a ribbon shaded as a tube, becomes a true round tube;
-    // "flat" a ray-facing ribbon; "ribbon" (oriented by N) is refused.
+    // "flat" a ray-facing ribbon; "ribbon" strahl's oriented ribbon, each
+    // control point's normal pbrt's slerp between the two N at its u.
     json curve(const Entity& e) const {
         const Parameter* P = typed(e, "P", {"point3"});
         if (!P || P->numbers.size() % 3 != 0) unsupported(e, "needs \"point3 P\"");
@@ -1132,9 +1133,27 @@ private:
         const int degree = integer(e, "degree", 3);
         if (degree != 2 && degree != 3) bad(*param(e, "degree"), "expected 2 or 3");
         const std::string type = text(e, "type", "flat");
-        if (type == "ribbon") unsupported(e, "curves of type \"ribbon\" (oriented by N) are not supported yet");
-        if (type != "flat" && type != "cylinder") bad(*param(e, "type"), "expected \"flat\", \"cylinder\" or \"ribbon\"");
-        if (const Parameter* N = e.params.find("N")) bad(*N, "only for curves of type \"ribbon\"");
+        if (type != "flat" && type != "cylinder" && type != "ribbon")
+            bad(*param(e, "type"), "expected \"flat\", \"cylinder\" or \"ribbon\"");
+        const Parameter* N = typed(e, "N", {"normal"});
+        if (N && type != "ribbon") bad(*N, "only for curves of type \"ribbon\"");
+        if (type == "ribbon" && (!N || N->numbers.size() != 6))
+            unsupported(e, "a ribbon needs \"normal N\" with two normals, at the curve's start and end");
+        glm::dvec3 n0(0.0), n1(0.0);
+        if (N) {
+            n0 = {N->numbers[0], N->numbers[1], N->numbers[2]};
+            n1 = {N->numbers[3], N->numbers[4], N->numbers[5]};
+            if (!(glm::length(n0) > 0.0) || !(glm::length(n1) > 0.0)) bad(*N, "the normals must not be zero");
+            n0 = glm::normalize(n0);
+            n1 = glm::normalize(n1);
+        }
+        // pbrt's normal at u along the whole curve: the great-circle slerp.
+        const auto normalAt = [&](double u) {
+            const double cosAngle = std::clamp(glm::dot(n0, n1), -1.0, 1.0), angle = std::acos(cosAngle);
+            if (angle < 1e-6) return n0;
+            return (std::sin((1.0 - u) * angle) * n0 + std::sin(u * angle) * n1) / std::sin(angle);
+        };
+        json normals = json::array();
         const double width = number(e, "width", 1.0);
         const double w0 = number(e, "width0", width), w1 = number(e, "width1", width);
         if (!(w0 >= 0.0 && w1 >= 0.0 && std::isfinite(w0) && std::isfinite(w1)))
@@ -1171,10 +1190,18 @@ private:
             for (size_t i = k == 0 ? 0 : 1; i < 4; ++i) {
                 const double u = (double(k) + double(i) / 3.0) / double(segments);
                 points.push_back({b[i].x, b[i].y, b[i].z, 0.5 * ((1.0 - u) * w0 + u * w1)});
+                if (N) {
+                    const glm::dvec3 nu = normalAt(u);
+                    normals.push_back({nu.x, nu.y, nu.z});
+                }
             }
         }
-        return {{"type", "curves"}, {"basis", "bezier"}, {"profile", type == "flat" ? "flat" : "round"},
-                {"points", std::move(points)}};
+        json out = {{"type", "curves"},
+                    {"basis", "bezier"},
+                    {"profile", type == "flat" ? "flat" : type == "ribbon" ? "oriented" : "round"},
+                    {"points", std::move(points)}};
+        if (N) out["normals"] = std::move(normals);
+        return out;
     }
 
     // pbrt-v4's bilinear patches: four indices per patch, the corners p00,

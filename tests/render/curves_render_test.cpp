@@ -56,13 +56,34 @@ TEST(CurvesRender, AStraightRoundCurveLooksLikeACylinder) {
     EXPECT_GT(test::channelSum(curve), 0.0);
 }
 
+TEST(CurvesRender, AStraightOrientedRibbonLooksLikeARectangle) {
+    // Across n x C' = (0, -1, 0) x (0, 0, 1) = -x: a 0.8-wide band facing the camera.
+    const std::vector<float> ribbon = test::renderBeauty(sceneWith(R"(
+        {"type": "curves", "basis": "bezier", "profile": "oriented", "radius": 0.4,
+         "points": [[0, 0, -1], [0, 0, -0.3], [0, 0, 0.3], [0, 0, 1]],
+         "normals": [[0, -1, 0], [0, -1, 0], [0, -1, 0], [0, -1, 0]]})"));
+    const std::vector<float> rectangle = test::renderBeauty(sceneWith(R"(
+        {"type": "mesh", "positions": [[-0.4, 0, -1], [0.4, 0, -1], [0.4, 0, 1], [-0.4, 0, 1]],
+         "indices": [0, 1, 2, 0, 2, 3]})"));
+    ASSERT_EQ(ribbon.size(), rectangle.size());
+    EXPECT_LT(differingPixels(ribbon, rectangle), 0.005);
+    EXPECT_GT(test::channelSum(ribbon), 0.0);
+}
+
 TEST(CurvesRender, TheNaiveTracerRendersTheSameCurves) {
-    for (const char* profile : {"round", "flat"}) {
-        const SceneDesc desc = sceneWith(std::string(R"(
-            {"type": "curves", "basis": "bspline", "profile": ")") + profile + R"(",
+    for (const std::string profile : {"round", "flat", "oriented"}) {
+        // Oriented ribbons lie across normals that turn a little along them.
+        const std::string normals =
+            profile != "oriented" ? ""
+                                  : R"(, "normals": [[0, -1, 0], [0, -1, 0.2], [0.1, -1, 0], [0, -1, -0.2], [0, -1, 0],
+                                                   [0, -1, 0], [0.3, -1, 0], [0, -1, 0], [0, -1, 0.3]])";
+        std::string shape = R"({"type": "curves", "basis": "bspline", "profile": "PROFILE",
              "points": [[-1, 0, -1, 0.1], [-0.5, 0.3, -0.4, 0.12], [0.4, -0.2, 0, 0.1], [0.6, 0.2, 0.5, 0.08],
                         [0.1, 0, 1, 0.05], [0.5, 0, -1, 0.1], [0.8, 0, 0, 0.1], [0.5, 0, 0.8, 0.1], [0.9, 0, 1, 0.1]],
-             "strands": [5, 4]})");
+             "strands": [5, 4]NORMALS})";
+        shape.replace(shape.find("PROFILE"), 7, profile);
+        shape.replace(shape.find("NORMALS"), 7, normals);
+        const SceneDesc desc = sceneWith(shape);
         const std::vector<float> embree = test::renderBeauty(desc);
         const std::vector<float> naive = test::renderFilm(desc, {.accel = AccelKind::Naive}).resolveBeauty();
         EXPECT_LT(differingPixels(embree, naive), 0.005) << profile;

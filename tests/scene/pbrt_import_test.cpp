@@ -435,7 +435,7 @@ TEST(PbrtImport, MalformedOrUnsupportedInputIsOneErrorWithItsLine) {
     EXPECT_THAT(errorOf(scene("Shape \"sphere\" \"float radius\" [1 2")), HasSubstr("the file ends where ] should follow"));
     EXPECT_THAT(errorOf(scene("Shape \"sphere\" \"string name\" \"open")), HasSubstr("a string runs past the end of its line"));
     EXPECT_THAT(errorOf(scene("Shape \"curve\" \"point3 P\" [0 0 0 1 0 0 2 0 0 3 0 0] \"string type\" \"ribbon\"\n")),
-                HasSubstr("scene.pbrt:6: Shape \"curve\": curves of type \"ribbon\" (oriented by N) are not supported yet"));
+                HasSubstr("scene.pbrt:6: Shape \"curve\": a ribbon needs \"normal N\" with two normals, at the curve's start and end"));
     EXPECT_THAT(errorOf(scene("Shape \"curve\" \"point3 P\" [0 0 0 1 0 0 2 0 0]\n")),
                 HasSubstr("scene.pbrt:6: \"point3 P\": a Bezier curve of degree 3 needs 3k + 1 points (got 3)"));
     EXPECT_THAT(errorOf(scene("Shape \"sphere\" \"float radius\" 1 \"float wobble\" 2\n")),
@@ -628,6 +628,15 @@ TEST(PbrtImport, CurvesBecomeCubicBezierStrandsExactly) {
     expectNear(vec(flat[1]), {2.0 / 3.0, 4.0 / 3.0, 0.0});
     expectNear(vec(flat[2]), {4.0 / 3.0, 4.0 / 3.0, 0.0});
     EXPECT_NEAR(flat[2][3].get<double>(), 0.5, 1e-12);  // width 1 by default
+    // A ribbon: an oriented strand whose normals are pbrt's slerp from the
+    // first N to the second along the whole curve.
+    const json ribbon = document(scene("Shape \"curve\" \"point3 P\" [0 0 0  1 0 0  2 0 0  3 0 0] \"string type\" \"ribbon\"\n"
+                                       "  \"normal N\" [0 0 1  0 1 0] \"float width\" 0.2\n"))["shapes"][0];
+    EXPECT_EQ(ribbon["profile"], "oriented");
+    ASSERT_EQ(ribbon["normals"].size(), 4u);
+    expectNear(vec(ribbon["normals"][0]), {0.0, 0.0, 1.0}, 1e-12);
+    expectNear(vec(ribbon["normals"][1]), {0.0, 0.5, std::sqrt(0.75)}, 1e-12);  // 30 of 90 degrees
+    expectNear(vec(ribbon["normals"][3]), {0.0, 1.0, 0.0}, 1e-12);
     // And the document renders: the world has the two curve shapes.
     const World world = buildWorld(SceneDocument::fromText(scene(
         "Shape \"curve\" \"point3 P\" [0 0 0  1 1 0  2 -1 0  3 0 0] \"float width\" 0.1\n"), "scene.pbrt").parse(),
