@@ -18,10 +18,8 @@
 // Usage: bench_curves [strands for the comparison, default 200000]
 //                     [strands for the curves-only run, default 1000000]
 
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -30,6 +28,7 @@
 #include <random>
 #include <vector>
 
+#include "camera_rays.h"
 #include "strahl/accel/accel.h"
 #include "strahl/camera/camera.h"
 #include "strahl/geometry/curve_set.h"
@@ -119,19 +118,8 @@ struct Result {
     size_t hits = 0;
 };
 
-// Mrays/s of one pass of single camera rays, parallel over rows.
 double trace(const Accel& accel, const Camera& camera, size_t& hits) {
-    std::atomic<size_t> count{0};
-    const double t0 = seconds();
-    tbb::parallel_for(0, kSize, [&](int y) {
-        size_t local = 0;
-        for (int x = 0; x < kSize; ++x)
-            if (accel.intersect(camera.generateRay(float(x) + 0.5f, float(y) + 0.5f)).valid()) ++local;
-        count += local;
-    });
-    const double dt = seconds() - t0;
-    hits = count;
-    return double(kSize) * kSize / dt * 1e-6;
+    return traceCameraRays(accel, camera, kSize, hits);
 }
 
 void compare(int strands) {

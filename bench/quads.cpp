@@ -18,10 +18,8 @@
 //
 // Usage: bench_quads [cells per side of the grid, default 1024]
 
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -31,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "camera_rays.h"
 #include "strahl/accel/accel.h"
 #include "strahl/accel/quad_faces.h"
 #include "strahl/camera/camera.h"
@@ -72,18 +71,8 @@ struct Case {
     Camera camera;
 };
 
-// Mrays/s of one pass of single camera rays, parallel over rows.
 double trace(const Accel& accel, const Camera& camera, size_t& hits) {
-    std::atomic<size_t> count{0};
-    const double t0 = seconds();
-    tbb::parallel_for(0, kSize, [&](int y) {
-        size_t local = 0;
-        for (int x = 0; x < kSize; ++x)
-            if (accel.intersect(camera.generateRay(float(x) + 0.5f, float(y) + 0.5f)).valid()) ++local;
-        count += local;
-    });
-    hits = count;
-    return double(kSize) * kSize / (seconds() - t0) * 1e-6;
+    return traceCameraRays(accel, camera, kSize, hits);
 }
 
 Camera looking(const Vec3& eye, const Vec3& at, const Vec3& up, float fovDegrees) {

@@ -388,8 +388,7 @@ bool orientedFrame(const DVec4 b[4], const DVec4 nb[4], OrientedFrame& frame) {
     return true;
 }
 
-DVec3 orientedWidth(const DVec4 b[4], const OrientedFrame& frame, double u, DVec3* derivative) {
-    (void)b;  // W is its own Bézier; b stays in the signature for symmetry with C
+DVec3 orientedWidth(const OrientedFrame& frame, double u, DVec3* derivative) {
     const double v = 1.0 - u;
     const DVec3* w = frame.w;
     if (derivative)
@@ -400,7 +399,7 @@ DVec3 orientedWidth(const DVec4 b[4], const OrientedFrame& frame, double u, DVec
 bool intersectOrientedCubic(const DRay& ray, const DVec4 b[4], const OrientedFrame& frame, RefHit& hit) {
     // f(u) = (C(u) - o) . (W(u) x d): zero where the ray meets the line across.
     const auto f = [&](double u) {
-        return glm::dot(xyz(evalBezier(b, u).p) - ray.origin, glm::cross(orientedWidth(b, frame, u), ray.dir));
+        return glm::dot(xyz(evalBezier(b, u).p) - ray.origin, glm::cross(orientedWidth(frame, u), ray.dir));
     };
     constexpr int kIntervals = 128;  // a degree-6 polynomial: two roots closer than 1/128 are a graze
     bool found = false;
@@ -422,7 +421,7 @@ bool intersectOrientedCubic(const DRay& ray, const DVec4 b[4], const OrientedFra
             const double u = flo == 0.0 ? lo : 0.5 * (lo + hi);
             const Eval e = evalBezier(b, u);
             DVec3 dW;
-            const DVec3 W = orientedWidth(b, frame, u, &dW);
+            const DVec3 W = orientedWidth(frame, u, &dW);
             const DVec3 q = xyz(e.p) - ray.origin, wd = glm::cross(W, ray.dir);
             const double wd2 = glm::dot(wd, wd);
             if (wd2 > 0.0) {

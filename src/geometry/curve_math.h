@@ -70,7 +70,7 @@ struct OrientedFrame {
 // across). nb: the normal curve as a (degree-3) Bézier.
 bool orientedFrame(const DVec4 b[4], const DVec4 nb[4], OrientedFrame& frame);
 // W(u) and, if wanted, W'(u).
-DVec3 orientedWidth(const DVec4 b[4], const OrientedFrame& frame, double u, DVec3* derivative = nullptr);
+DVec3 orientedWidth(const OrientedFrame& frame, double u, DVec3* derivative = nullptr);
 // The ray meets the line {C(u) + s W(u)} where (C(u) - o) . (W(u) x d) = 0, a
 // polynomial of degree 6 in u: its sign changes on 128 intervals of [0, 1],
 // refined by bisection, then s and t from the two remaining equations. The

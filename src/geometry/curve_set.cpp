@@ -257,7 +257,7 @@ SurfaceInteraction CurveSet::interaction(const Ray& ray, const Hit& hit) const {
         curve::OrientedFrame frame;
         orientedFrameOf(hit.primID, b, frame);  // checked when the set was made
         DVec3 dW;
-        const DVec3 W = curve::orientedWidth(b, frame, u, &dW);
+        const DVec3 W = curve::orientedWidth(frame, u, &dW);
         const double w2 = glm::dot(W, W);
         const double s = w2 > 0.0 ? std::clamp(glm::dot(x - xyz(e.p), W) / w2, -1.0, 1.0) : 0.0;
         x = xyz(e.p) + s * W;
