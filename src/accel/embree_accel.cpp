@@ -27,6 +27,12 @@
 //    points (x, y, z, r) and segment starts shared as they are (an oriented
 //    ribbon's normals copied). Its
 //    intersect() is the naive tracer's independent reference.
+//  - A SubdivisionSurface likewise becomes Embree's subdivision geometry: its
+//    cage (positions copied to float, faces, creases, corners, holes), its
+//    boundary mode and a tessellation rate of 2^levels segments per edge, so
+//    Embree's grid points are the reference's refined points. A displaced
+//    surface gets a displacement function that adds the surface's own offset
+//    at each grid point's (face, u, v) (SubdivisionSurface::displacementAt).
 //  - Vertex and index buffers are shared with Embree (zero copy) when the
 //    mesh's position vector has the spare element Embree's 16-byte vertex loads
 //    need (TriangleMesh::reservePadding); otherwise they are copied once into an
@@ -48,6 +54,7 @@
 #include "strahl/core/error.h"
 #include "strahl/core/transform.h"
 #include "strahl/geometry/curve_set.h"
+#include "strahl/geometry/subdivision_surface.h"
 
 namespace strahl {
 
@@ -136,6 +143,29 @@ void cutoutFilter(const RTCFilterFunctionNArguments* args) {
     }
 }
 
+// Displacement of a SubdivisionSurface: Embree hands over the limit points of
+// its tessellation grids with their face parameters (u, v); each moves by the
+// surface's own offset there.
+void subdivisionDisplacement(const RTCDisplacementFunctionNArguments* args) {
+    const auto* surface = static_cast<const SubdivisionSurface*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        const DVec3 d = surface->displacementAt(args->primID, args->u[i], args->v[i]);
+        args->P_x[i] += static_cast<float>(d.x);
+        args->P_y[i] += static_cast<float>(d.y);
+        args->P_z[i] += static_cast<float>(d.z);
+    }
+}
+
+RTCSubdivisionMode embreeSubdivisionMode(SubdivisionBoundary boundary) {
+    switch (boundary) {
+        case SubdivisionBoundary::Smooth: return RTC_SUBDIVISION_MODE_SMOOTH_BOUNDARY;
+        case SubdivisionBoundary::PinCorners: return RTC_SUBDIVISION_MODE_PIN_CORNERS;
+        case SubdivisionBoundary::PinBoundary: return RTC_SUBDIVISION_MODE_PIN_BOUNDARY;
+        case SubdivisionBoundary::PinAll: return RTC_SUBDIVISION_MODE_PIN_ALL;
+    }
+    return RTC_SUBDIVISION_MODE_SMOOTH_BOUNDARY;
+}
+
 // ---- the accelerator -----------------------------------------------------------
 
 class EmbreeAccel final : public EmbreeSceneAccel {
@@ -196,7 +226,44 @@ private:
     RTCGeometry newShapeGeometry(const ShapeRef& shape, size_t scene, unsigned geomID) {
         if (shape.mesh) return newMeshGeometry(*shape.mesh, shape.cutout, scene, geomID);
         if (const CurveSet* curves = shape.user->asCurves()) return newCurveGeometry(*curves);
+        if (const SubdivisionSurface* surface = shape.user->asSubdivision()) return newSubdivisionGeometry(*surface);
         return newUserGeometry(*shape.user, geomID);
+    }
+
+    RTCGeometry newSubdivisionGeometry(const SubdivisionSurface& surface) {
+        const SubdivisionCage& cage = surface.cage();
+        RTCGeometry geom = rtcNewGeometry(device(), RTC_GEOMETRY_TYPE_SUBDIVISION);
+        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                                     3 * sizeof(float), cage.positions.size()));
+        if (vertices)
+            for (size_t i = 0; i < cage.positions.size(); ++i)
+                for (int k = 0; k < 3; ++k) vertices[3 * i + k] = static_cast<float>(cage.positions[i][k]);
+        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_FACE, 0, RTC_FORMAT_UINT, cage.faceSizes.data(), 0,
+                                   sizeof(uint32_t), cage.faceSizes.size());
+        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, cage.indices.data(), 0,
+                                   sizeof(uint32_t), cage.indices.size());
+        if (!cage.creaseWeights.empty()) {
+            rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_EDGE_CREASE_INDEX, 0, RTC_FORMAT_UINT2,
+                                       cage.creaseEdges.data(), 0, 2 * sizeof(uint32_t), cage.creaseWeights.size());
+            rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_EDGE_CREASE_WEIGHT, 0, RTC_FORMAT_FLOAT,
+                                       cage.creaseWeights.data(), 0, sizeof(float), cage.creaseWeights.size());
+        }
+        if (!cage.cornerWeights.empty()) {
+            rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX_CREASE_INDEX, 0, RTC_FORMAT_UINT,
+                                       cage.cornerVertices.data(), 0, sizeof(uint32_t), cage.cornerVertices.size());
+            rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX_CREASE_WEIGHT, 0, RTC_FORMAT_FLOAT,
+                                       cage.cornerWeights.data(), 0, sizeof(float), cage.cornerWeights.size());
+        }
+        if (!cage.holes.empty())
+            rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_HOLE, 0, RTC_FORMAT_UINT, cage.holes.data(), 0,
+                                       sizeof(uint32_t), cage.holes.size());
+        rtcSetGeometrySubdivisionMode(geom, 0, embreeSubdivisionMode(cage.boundary));
+        rtcSetGeometryTessellationRate(geom, static_cast<float>(surface.tessellationRate()));
+        if (surface.displaced()) {
+            rtcSetGeometryUserData(geom, const_cast<SubdivisionSurface*>(&surface));
+            rtcSetGeometryDisplacementFunction(geom, &subdivisionDisplacement);
+        }
+        return geom;
     }
 
     static RTCGeometryType curveGeometryType(CurveType type, CurveBasis basis) {

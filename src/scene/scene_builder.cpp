@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "curve_parser.h"
+#include "subdivision_parser.h"
 #include "instance_flattening.h"
 #include "light_builder.h"
 #include "material_builder.h"
@@ -277,6 +278,10 @@ BuiltScene buildScene(const SceneDesc& desc, const BuildOptions& options, BuildT
                 }
                 if (shape.kind == ShapeKind::Curves) {
                     userShapes[i] = makeCurveShape(desc, shape);
+                    return;
+                }
+                if (shape.kind == ShapeKind::Subdivision) {
+                    userShapes[i] = scene_detail::makeSubdivisionSurface(shape, shapeSource(desc, shape));
                     return;
                 }
                 LoadedMesh mesh;

@@ -17,6 +17,7 @@
 #include "camera_parser.h"
 #include "film_parser.h"
 #include "curve_parser.h"
+#include "subdivision_parser.h"
 #include "implicit_parser.h"
 #include "instance_arrays.h"
 #include "instance_flattening.h"
@@ -168,7 +169,8 @@ ShapeDesc parseShape(const JsonValue& v, const ShapeContext& context) {
     ShapeDesc s;
     s.where = v.pointer();
     if (!v.raw().is_object()) v.fail("expected an object, got ", v.describe());
-    const std::string type = v.get("type").oneOf({"mesh", "implicit", "parametric", "curves", "instance"});
+    const std::string type =
+        v.get("type").oneOf({"mesh", "implicit", "parametric", "curves", "subdivision", "instance"});
     if (type == "instance") {
         v.requireKeys({"type", "name", "group", "transform", "motion", "placements", "scatter"});
         s.kind = ShapeKind::Instance;
@@ -212,6 +214,8 @@ ShapeDesc parseShape(const JsonValue& v, const ShapeContext& context) {
         s.name = s.where;
     } else if (type == "curves") {
         scene_detail::parseCurvesShape(v, folder, s);
+    } else if (type == "subdivision") {
+        scene_detail::parseSubdivisionShape(v, folder, s);
     } else if (type == "parametric") {
         v.requireKeys({"type", "name", "material", "transform", "motion", "surface", "mode", "tessellation",
                        "direct", "flip_normals"});
@@ -243,7 +247,8 @@ ShapeDesc parseShape(const JsonValue& v, const ShapeContext& context) {
             material->fail("unknown material '", s.material, "' (defined: ", defined, "default)");
         }
     }
-    if (s.material.empty() && (s.file.empty() || s.kind == ShapeKind::Curves)) s.material = "default";
+    if (s.material.empty() && (s.file.empty() || s.kind == ShapeKind::Curves || s.kind == ShapeKind::Subdivision))
+        s.material = "default";
 
     if (auto transform = v.find("transform")) s.transform = parseTransform(*transform);
     if (auto motion = v.find("motion")) {  // wrapped in an instance by wrapMovingShapes

@@ -5,9 +5,10 @@
 // primitives with conservative boxes: Embree through one generic user-geometry
 // adapter (accel/), the naive tracer (reference/) by calling intersect() on
 // every primitive. Both call exactly this code, so they agree by construction.
-// The one exception is a CurveSet (curve_set.h): Embree intersects curves with
-// its own native curve geometry, and intersect() is then the independent
-// reference the naive tracer uses and the agreement tests compare against.
+// The exceptions are a CurveSet (curve_set.h) and a SubdivisionSurface
+// (subdivision_surface.h): Embree intersects them with its own native
+// geometry, and intersect() is then the independent reference the naive
+// tracer uses and the agreement tests compare against.
 //
 // Two-phase intersection: intersect() fills only the preliminary Hit (t, u, v,
 // Ng); shading later asks interaction() for the full SurfaceInteraction of the
@@ -33,6 +34,7 @@
 namespace strahl {
 
 class CurveSet;
+class SubdivisionSurface;
 
 class UserShape {
 public:
@@ -66,6 +68,9 @@ public:
     // The curves, if this shape is a CurveSet (which Embree intersects
     // natively); null for every other shape.
     virtual const CurveSet* asCurves() const { return nullptr; }
+    // The surface, if this shape is a SubdivisionSurface (which Embree
+    // tessellates natively); null for every other shape.
+    virtual const SubdivisionSurface* asSubdivision() const { return nullptr; }
 };
 
 // One entry of the list an accelerator is built over: exactly one of mesh and

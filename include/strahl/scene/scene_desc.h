@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -18,7 +19,9 @@
 #include "strahl/core/math.h"
 #include "strahl/core/pixel_rect.h"
 #include "strahl/film/film.h"
+#include "strahl/geometry/catmull_clark.h"
 #include "strahl/geometry/curve_set.h"
+#include "strahl/geometry/formula.h"
 #include "strahl/geometry/implicit_shape.h"
 #include "strahl/geometry/parametric_shape.h"
 #include "strahl/geometry/parametric_tessellation.h"
@@ -124,7 +127,7 @@ struct MaterialDesc {
     std::string where;
 };
 
-enum class ShapeKind { Mesh, Implicit, Parametric, Curves, Instance };
+enum class ShapeKind { Mesh, Implicit, Parametric, Curves, Subdivision, Instance };
 
 enum class ParametricMode { Tessellated, Direct };
 
@@ -163,6 +166,26 @@ struct ParametricDesc {
 // a 1000-pixel-wide image.
 inline constexpr double kDefaultRelativeError = 5e-4;
 
+// A subdivision surface's displacement: h = scale × (the formula of x, y, z,
+// u, v at the limit point, object space) or scale × (the image's value at the
+// cage's uv), plus offset; along the unit normal, in object units.
+struct DisplacementDesc {
+    std::shared_ptr<const Formula> formula;  // null: an image
+    std::filesystem::path image;             // resolved; read when the world is built
+    double scale = 1.0;
+    double offset = 0.0;
+    std::string text;  // for messages and `strahl info`
+};
+
+// A "subdivision" shape: its control cage in object space (inline, or read
+// from an OBJ file when the world is built), levels and displacement.
+struct SubdivisionShapeDesc {
+    SubdivisionCage cage;         // empty positions while `file` is to be read
+    std::filesystem::path file;   // resolved OBJ cage, or empty
+    int levels = 3;
+    std::optional<DisplacementDesc> displacement;
+};
+
 struct ShapeDesc {
     ShapeKind kind = ShapeKind::Mesh;
     std::string name;                // optional label, defaults to the JSON pointer
@@ -183,6 +206,7 @@ struct ShapeDesc {
     // is built.
     CurveSetDesc curves;
     bool curveRadiusFollowsTransform = true;  // "transform_radius"
+    SubdivisionShapeDesc subdivision;         // kind == Subdivision
     Mat4 transform{1.0f};            // object to world (in a group: to the group's space)
     // kind == Instance: an instance array when not empty — the group placed
     // once per matrix, at transform · placement (group space to the array's,
