@@ -63,15 +63,15 @@ void buildTopology(Level& level, const std::string& name, std::unordered_map<uin
         const uint32_t first = level.faceStart[f], n = level.faceSize(f);
         for (uint32_t i = 0; i < n; ++i) {
             const uint32_t a = level.corners[first + i], b = level.corners[first + (i + 1) % n];
-            if (checkDirection && !directed.emplace(uint64_t(a) << 32 | b, uint32_t(f)).second)
-                fail(name, ": the edge ", a, "-", b, " is used twice in the same direction (faces ",
-                     directed[uint64_t(a) << 32 | b], " and ", f, "): face windings disagree");
             const auto [it, inserted] = edgeIndex.emplace(edgeKey(a, b), uint32_t(level.edges.size()));
             if (inserted) level.edges.push_back(Edge{std::min(a, b), std::max(a, b)});
             Edge& e = level.edges[it->second];
             if (e.faceCount == 2)
                 fail(name, ": the edge ", a, "-", b, " is shared by more than two faces (face ", f,
                      "); subdivision needs a manifold surface");
+            if (checkDirection && !directed.emplace(uint64_t(a) << 32 | b, uint32_t(f)).second)
+                fail(name, ": the edge ", a, "-", b, " is used twice in the same direction (faces ",
+                     directed[uint64_t(a) << 32 | b], " and ", f, "): face windings disagree");
             e.faces[e.faceCount++] = uint32_t(f);
             level.cornerEdge[first + i] = it->second;
         }
@@ -109,7 +109,11 @@ float effectiveEdgeSharpness(const Edge& e, SubdivisionBoundary mode) {
 struct VertexRule {
     enum Kind { Smooth, Crease, Corner } kind = Smooth;
     uint32_t creaseEnds[2] = {0, 0};
+    uint32_t creaseEdges[2] = {0, 0};
     float blend = 1.0f;  // weight of the sharp rule against the smooth one
+    // A crease vertex without a vertex sharpness: the sharpness of its two
+    // crease edges' children here follows Chaikin's rule.
+    bool chaikin = false;
 };
 
 // Which rule vertex v follows at this level (the header's table).
@@ -124,7 +128,10 @@ VertexRule vertexRule(const Level& level, uint32_t v, SubdivisionBoundary mode) 
         boundary |= e.faceCount < 2;
         const float s = effectiveEdgeSharpness(e, mode);
         if (s > 0.0f) {
-            if (sharpCount < 2) rule.creaseEnds[sharpCount] = e.a == v ? e.b : e.a;
+            if (sharpCount < 2) {
+                rule.creaseEnds[sharpCount] = e.a == v ? e.b : e.a;
+                rule.creaseEdges[sharpCount] = level.vertexEdges[k];
+            }
             ++sharpCount;
             sharpSum += double(s);
         }
@@ -139,11 +146,11 @@ VertexRule vertexRule(const Level& level, uint32_t v, SubdivisionBoundary mode) 
         rule.kind = VertexRule::Corner;
         rule.blend = std::min(1.0f, vertexSharpness);
     } else if (sharpCount > 2) {
-        rule.kind = VertexRule::Corner;
-        rule.blend = std::min(1.0f, edgeMean);
+        rule.kind = VertexRule::Corner;  // not blended (Embree, DeRose et al.)
     } else if (sharpCount == 2) {
         rule.kind = VertexRule::Crease;
         rule.blend = std::min(1.0f, edgeMean);
+        rule.chaikin = true;
     }
     return rule;
 }
@@ -240,10 +247,20 @@ Level refine(const Level& level, SubdivisionBoundary mode, bool firstLevel, cons
         fail(name, ": ", next.corners.size() / 4, " refined quads at this level is too many (at most ",
              kMaxRefinedQuads, "); choose fewer levels");
     buildTopology(next, name, nullptr);
-    // Child edges of a parent edge inherit its sharpness minus one; the edges
-    // inside a face (edge point to face point) are smooth.
+    // Child edges of a parent edge inherit its sharpness minus one — at a
+    // crease vertex by Chaikin's rule, (3 s + s_other)/4 − 1 with s_other the
+    // vertex's other crease edge; the edges inside a face (edge point to face
+    // point) are smooth.
     for (Edge& e : next.edges) {
-        if (e.a < nv && e.b >= nv && e.b < nv + ne) e.sharpness = childSharpness(level.edges[e.b - nv].sharpness);
+        if (!(e.a < nv && e.b >= nv && e.b < nv + ne)) continue;
+        const uint32_t parent = e.b - nv;
+        const float s = level.edges[parent].sharpness;
+        e.sharpness = childSharpness(s);
+        const VertexRule& rule = rules[e.a];
+        if (rule.chaikin && s > 0.0f && (rule.creaseEdges[0] == parent || rule.creaseEdges[1] == parent)) {
+            const uint32_t other = rule.creaseEdges[0] == parent ? rule.creaseEdges[1] : rule.creaseEdges[0];
+            e.sharpness = childSharpness(0.25f * (3.0f * s + level.edges[other].sharpness));
+        }
     }
     next.vertexSharpness.assign(next.p.size(), 0.0f);
     for (uint32_t v = 0; v < nv; ++v) next.vertexSharpness[v] = childSharpness(level.vertexSharpness[v]);
@@ -394,6 +411,11 @@ RefinedSurface refineCatmullClark(const SubdivisionCage& cage, int levels, const
     if (levels < 1 || levels > kMaxSubdivisionLevels)
         fail(name, ": ", levels, " subdivision levels (1 to ", kMaxSubdivisionLevels, ")");
     Level level = levelZero(cage, name);
+    // Pinned everywhere, every control edge is a kink between bilinear
+    // patches: sharp for the rules already (effectiveEdgeSharpness), and
+    // so for the normals too.
+    if (cage.boundary == SubdivisionBoundary::PinAll)
+        for (Edge& e : level.edges) e.sharpness = kInfiniteSharpness;
     for (int l = 0; l < levels; ++l) level = refine(level, cage.boundary, l == 0, name);
 
     std::vector<VertexRule> rules(level.p.size());

@@ -289,7 +289,7 @@ DVec3 SubdivisionSurface::pointAt(uint32_t face, float u, float v) const noexcep
 std::string SubdivisionSurface::describe() const {
     std::ostringstream s;
     const SubdivisionCage& c = desc_.cage;
-    s << "subdivision surface '" << desc_.name << "': " << c.faceSizes.size() << " faces";
+    s << "subdivision surface: " << c.faceSizes.size() << " faces";
     if (!c.holes.empty()) s << " (" << c.holes.size() << " holes)";
     s << ", " << desc_.levels << " levels (" << tessellationRate() << " segments per edge, "
       << refined_.quads.size() << " quads)";

@@ -143,7 +143,7 @@ void parseSubdivisionShape(const JsonValue& v, const std::filesystem::path& fold
     // An inline cage is checked now, so its errors name their place.
     if (positions) {
         try {
-            (void)refineCatmullClark(cage, 1, s.name);
+            (void)refineCatmullClark(cage, 1, s.name == s.where ? std::string("the cage") : s.name);
         } catch (const Error& e) {
             v.fail(e.what());
         }
@@ -159,7 +159,12 @@ std::shared_ptr<const SubdivisionSurface> makeSubdivisionSurface(const ShapeDesc
     desc.cage = d.cage;
     desc.levels = d.levels;
     if (!d.file.empty()) {
-        PolygonFile obj = loadObjPolygons(d.file, uint32_t(kMaxFaceSize));
+        PolygonFile obj;
+        try {
+            obj = loadObjPolygons(d.file, uint32_t(kMaxFaceSize));
+        } catch (const Error& e) {
+            fail(source, ": ", e.what());  // the file's own errors name it and the line
+        }
         desc.cage.positions = std::move(obj.positions);
         desc.cage.uvs = std::move(obj.uvs);
         desc.cage.faceSizes = std::move(obj.faceSizes);

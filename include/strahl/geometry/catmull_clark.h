@@ -16,12 +16,16 @@
 //                 V = (6v + a + b) / 8                  crease: exactly 2 sharp edges to a and b
 //                 V = v                                 corner: more than 2 sharp edges, or a
 //                                                       vertex sharpness ≥ 1
-//                 a rule's sharp result is blended with the smooth one by the
-//                 mean sharpness of its edges (or the vertex's) when that is < 1.
+//                 the crease rule is blended with the smooth one by the mean
+//                 sharpness of its two edges when that is < 1, the corner rule
+//                 of a vertex sharpness s < 1 by s; more than 2 sharp edges
+//                 make a corner unblended.
 // and f becomes n quads (v_i, E_i, F, E_{i−1}), E_i on the edge v_i v_{i+1},
-// keeping its winding. Every child edge's sharpness is its parent's minus 1,
-// and so is a vertex's; boundary edges are infinitely sharp (the boundary is
-// a cubic B-spline curve). After the last level every vertex moves to its
+// keeping its winding. A child edge's sharpness is its parent's minus 1 —
+// at a crease vertex with sharp edges s and s', by Chaikin's rule
+// (3s + s')/4 − 1 — and so is a vertex's (never below 0); boundary edges are
+// infinitely sharp (the boundary is a cubic B-spline curve). These are the
+// rules of Embree's subdivision (kernels/subdiv/catmullclark_ring.h). After the last level every vertex moves to its
 // limit position (all faces are quads by then):
 //   smooth    v∞ = (n² v + 4 Σ e_j + Σ d_j) / (n (n + 5))    e_j: edge neighbours,
 //                                                            d_j: diagonal corners
