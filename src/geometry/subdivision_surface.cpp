@@ -291,7 +291,9 @@ std::string SubdivisionSurface::describe() const {
     const SubdivisionCage& c = desc_.cage;
     s << "subdivision surface: " << c.faceSizes.size() << " faces";
     if (!c.holes.empty()) s << " (" << c.holes.size() << " holes)";
-    s << ", " << desc_.levels << " levels (" << tessellationRate() << " segments per edge, "
+    s << ", " << desc_.levels << " levels (";
+    if (!desc_.levelsText.empty()) s << desc_.levelsText << ", ";
+    s << tessellationRate() << " segments per edge, "
       << refined_.quads.size() << " quads)";
     if (!c.creaseWeights.empty()) s << ", " << c.creaseWeights.size() << " creases";
     if (!c.cornerWeights.empty()) s << ", " << c.cornerWeights.size() << " corners";

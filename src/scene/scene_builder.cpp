@@ -281,7 +281,14 @@ BuiltScene buildScene(const SceneDesc& desc, const BuildOptions& options, BuildT
                     return;
                 }
                 if (shape.kind == ShapeKind::Subdivision) {
-                    userShapes[i] = scene_detail::makeSubdivisionSurface(shape, shapeSource(desc, shape));
+                    scene_detail::SubdivisionBudget budget;
+                    budget.memoryLimitBytes = options.memoryLimitBytes;
+                    if (shape.subdivision.maxEdgePixels > 0.0)
+                        // The cage is placed in world space before refining:
+                        // the camera's bound at world points.
+                        budget.maxEdgeLength = edgeLengthFromCamera(desc, built.camera, Mat4(1.0f),
+                                                                    shape.subdivision.maxEdgePixels, 0.0);
+                    userShapes[i] = scene_detail::makeSubdivisionSurface(shape, shapeSource(desc, shape), budget);
                     return;
                 }
                 LoadedMesh mesh;

@@ -80,7 +80,7 @@ double sampleImage(const FloatImage& image, double u, double v) {
 
 void parseSubdivisionShape(const JsonValue& v, const std::filesystem::path& folder, ShapeDesc& s) {
     v.requireKeys({"type", "name", "material", "transform", "motion", "positions", "faces", "uvs", "file", "levels",
-                   "creases", "corners", "holes", "boundary", "displacement"});
+                   "max_edge_pixels", "creases", "corners", "holes", "boundary", "displacement"});
     s.kind = ShapeKind::Subdivision;
     s.name = s.where;
     if (auto name = v.find("name")) s.name = name->string();
@@ -117,6 +117,10 @@ void parseSubdivisionShape(const JsonValue& v, const std::filesystem::path& fold
         v.fail("needs 'positions' and 'faces' (an inline cage) or 'file' (an OBJ cage)");
     }
     if (auto levels = v.find("levels")) d.levels = int(levels->integer(1, kMaxSubdivisionLevels));
+    if (auto pixels = v.find("max_edge_pixels")) {
+        if (v.has("levels")) v.fail("give 'levels' or 'max_edge_pixels', not both");
+        d.maxEdgePixels = pixels->numberIn(1e-3f, 1e6f);
+    }
     if (auto creases = v.find("creases")) {
         for (size_t k = 0; k < creases->size(); ++k) {
             const JsonValue c = creases->at(k);
@@ -152,7 +156,34 @@ void parseSubdivisionShape(const JsonValue& v, const std::filesystem::path& fold
     }
 }
 
-std::shared_ptr<const SubdivisionSurface> makeSubdivisionSurface(const ShapeDesc& shape, const std::string& source) {
+int levelsForEdgeLength(const SubdivisionCage& cage, const std::function<double(const DVec3&)>& maxEdgeLength,
+                        size_t memoryLimitBytes, bool& capped) {
+    int levels = 1;
+    size_t first = 0;
+    for (uint32_t n : cage.faceSizes) {
+        for (uint32_t i = 0; i < n; ++i) {
+            const DVec3& a = cage.positions[cage.indices[first + i]];
+            const DVec3& b = cage.positions[cage.indices[first + (i + 1) % n]];
+            const double allowed = std::min(maxEdgeLength(a), maxEdgeLength(b));
+            const double length = glm::length(b - a);
+            while (levels < kMaxSubdivisionLevels && length > allowed * double(1 << levels)) ++levels;
+        }
+        first += n;
+    }
+    capped = false;
+    if (memoryLimitBytes == 0) return levels;
+    // Refined quads: 4^levels per quad face, n · 4^(levels − 1) per n-gon.
+    size_t quadsAtOne = 0;  // after one level
+    for (uint32_t n : cage.faceSizes) quadsAtOne += n;
+    while (levels > 1 && quadsAtOne * (size_t(1) << (2 * (levels - 1))) * kBytesPerRefinedQuad > memoryLimitBytes) {
+        --levels;
+        capped = true;
+    }
+    return levels;
+}
+
+std::shared_ptr<const SubdivisionSurface> makeSubdivisionSurface(const ShapeDesc& shape, const std::string& source,
+                                                                 const SubdivisionBudget& budget) {
     const SubdivisionShapeDesc& d = shape.subdivision;
     SubdivisionDesc desc;
     desc.name = source;
@@ -174,6 +205,11 @@ std::shared_ptr<const SubdivisionSurface> makeSubdivisionSurface(const ShapeDesc
     // moving the refined surface.
     const glm::dmat4 toWorld(shape.transform);
     for (DVec3& p : desc.cage.positions) p = DVec3(toWorld * glm::dvec4(p, 1.0));
+    if (d.maxEdgePixels > 0.0 && budget.maxEdgeLength) {
+        bool capped = false;
+        desc.levels = levelsForEdgeLength(desc.cage, budget.maxEdgeLength, budget.memoryLimitBytes, capped);
+        desc.levelsText = concat("from max_edge_pixels ", d.maxEdgePixels, capped ? ", capped by the memory limit" : "");
+    }
     if (d.displacement) {
         const DisplacementDesc& disp = *d.displacement;
         if (!disp.formula && desc.cage.uvs.empty())

@@ -6,6 +6,7 @@
 // world is built. Documented in docs/scene-format.md and docs/geometry.md.
 
 #include <filesystem>
+#include <functional>
 #include <memory>
 
 #include "json_reader.h"
@@ -17,8 +18,29 @@ namespace strahl::scene_detail {
 // Fills shape.subdivision (and its kind and name) from the shape object.
 void parseSubdivisionShape(const JsonValue& v, const std::filesystem::path& folder, ShapeDesc& shape);
 
+// Bytes a refined quad costs: the reference tables (about 225 B) and
+// Embree's grids and BVH (about 35 B), measured with `strahl info` on a
+// subdivided cube at 5 levels.
+inline constexpr size_t kBytesPerRefinedQuad = 260;
+
+// Where the camera puts a subdivision's refinement: the longest edge allowed
+// at a world-space point (edgeLengthFromCamera in scene_builder.cpp), and the
+// process's memory limit (0: none).
+struct SubdivisionBudget {
+    std::function<double(const DVec3&)> maxEdgeLength;  // null: use shape.subdivision.levels
+    size_t memoryLimitBytes = 0;
+};
+
 // The surface in world space: the cage read (from its file, if any), moved by
 // shape.transform, refined, displaced. `source` names the shape in errors.
-std::shared_ptr<const SubdivisionSurface> makeSubdivisionSurface(const ShapeDesc& shape, const std::string& source);
+std::shared_ptr<const SubdivisionSurface> makeSubdivisionSurface(const ShapeDesc& shape, const std::string& source,
+                                                                 const SubdivisionBudget& budget);
+
+// The levels (1 … 8) at which every edge of `cage` (world space), split
+// 2^levels times, is at most maxEdgeLength at its ends; then lowered until
+// the refined quads fit in memoryLimitBytes (if not 0). `capped` says
+// whether the limit lowered them.
+int levelsForEdgeLength(const SubdivisionCage& cage, const std::function<double(const DVec3&)>& maxEdgeLength,
+                        size_t memoryLimitBytes, bool& capped);
 
 }  // namespace strahl::scene_detail

@@ -17,6 +17,8 @@
 #include "strahl/scene/scene_desc.h"
 #include "test_support.h"
 
+#include "../../src/scene/subdivision_parser.h"  // internal to the scene module
+
 namespace strahl {
 namespace {
 
@@ -134,6 +136,36 @@ TEST(SubdivisionScene, ObjCagesKeepTheirPolygons) {
                 HasSubstr("a cage file must be an OBJ file"));
 }
 
+TEST(SubdivisionScene, LevelsFromScreenSpaceEdgeLength) {
+    // The cube's nearest edges (length 2) are 5 units from the eye of a
+    // 40°, 128-pixel-high camera: a pixel there is 2 tan 20° · 5 / 128 =
+    // 0.028 units, so an edge spans 70 pixels and needs 2^5 > 70 / 4 segments
+    // for 4 pixels, 2^7 > 70 for 1.
+    const auto levelsFor = [](const std::string& pixels) {
+        std::string text = R"({"camera": {"eye": [0, -6, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 40},
+            "film": {"width": 128, "height": 128}, "shapes": [)";
+        text.append(cube(R"("max_edge_pixels": )" + pixels)).append("]}");
+        const World world = buildWorld(parseSceneText(text, "scene.json"), BuildOptions{});
+        return std::make_pair(surfaceOf(world).desc().levels, surfaceOf(world).describe());
+    };
+    const auto [five, text] = levelsFor("4");
+    EXPECT_EQ(five, 5);
+    EXPECT_THAT(text, HasSubstr("5 levels (from max_edge_pixels 4, 32 segments per edge"));
+    EXPECT_EQ(levelsFor("1").first, 7);
+    EXPECT_EQ(levelsFor("1000").first, 1);
+    // The memory limit caps them: 24 quads after one level, 24 · 4^(L−1) at
+    // L, 260 bytes each: 300 KB hold 3 levels (100 KB) but not 4 (399 KB).
+    SubdivisionCage cage = parse(cube("")).shapes.at(0).subdivision.cage;
+    const auto tiny = [](const DVec3&) { return 1e-3; };
+    bool capped = false;
+    EXPECT_EQ(scene_detail::levelsForEdgeLength(cage, tiny, 0, capped), 8);
+    EXPECT_FALSE(capped);
+    EXPECT_EQ(scene_detail::levelsForEdgeLength(cage, tiny, 300000, capped), 3);
+    EXPECT_TRUE(capped);
+    EXPECT_THAT(errorOf(cube(R"("levels": 2, "max_edge_pixels": 3)")),
+                HasSubstr("give 'levels' or 'max_edge_pixels', not both"));
+}
+
 TEST(SubdivisionScene, BadInputNamesItsPlace) {
     EXPECT_THAT(errorOf(R"({"type": "subdivision"})"), HasSubstr("/shapes/0: needs 'positions' and 'faces'"));
     EXPECT_THAT(errorOf(cube(R"("levels": 9)")), HasSubstr("/shapes/0/levels"));
@@ -156,7 +188,7 @@ TEST(SubdivisionScene, BadInputNamesItsPlace) {
     EXPECT_THAT(errorOf(cube(R"("uvs": [[0,0]])")), HasSubstr("/shapes/0/uvs: expected one [u, v] per position (8)"));
     EXPECT_THAT(errorOf(cube(R"("flip_normals": true)")),
                 HasSubstr("unknown key 'flip_normals' (allowed: type, name, material, transform, motion, positions, "
-                          "faces, uvs, file, levels, creases, corners, holes, boundary, displacement)"));
+                          "faces, uvs, file, levels, max_edge_pixels, creases, corners, holes, boundary, displacement)"));
 }
 
 }  // namespace

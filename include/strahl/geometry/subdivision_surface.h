@@ -40,6 +40,7 @@ struct SubdivisionDesc {
     int levels = 3;  // 1 … 8: each face edge becomes 2^levels segments
     DisplacementFunction displacement;  // null: none
     std::string displacementText;       // for describe(): what the displacement is
+    std::string levelsText;             // for describe(): how the levels were chosen, if not given
 };
 
 class SubdivisionSurface final : public UserShape {

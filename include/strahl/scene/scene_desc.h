@@ -183,6 +183,10 @@ struct SubdivisionShapeDesc {
     SubdivisionCage cage;         // empty positions while `file` is to be read
     std::filesystem::path file;   // resolved OBJ cage, or empty
     int levels = 3;
+    // When > 0, instead of `levels`: the fewest levels (1 … 8) that make
+    // every refined cage edge at most this many pixels of the scene's camera,
+    // capped so the refined surface fits the memory limit.
+    double maxEdgePixels = 0.0;
     std::optional<DisplacementDesc> displacement;
 };
 
