@@ -86,7 +86,7 @@ Vec3 down(const DVec3& p) { return Vec3(p); }
 SubdivisionSurface::SubdivisionSurface(SubdivisionDesc desc) : desc_(std::move(desc)) {
     const std::string& name = desc_.name;
     refined_ = refineCatmullClark(desc_.cage, desc_.levels, name);
-    points_ = refined_.positions;
+    points_ = std::move(refined_.positions);  // displaced in place below
     if (desc_.displacement) {
         // Unit normals per refined vertex over all its quads, creases or not,
         // so that a displaced crease stays closed.
@@ -122,6 +122,7 @@ SubdivisionSurface::SubdivisionSurface(SubdivisionDesc desc) : desc_(std::move(d
     for (size_t f = 0; f < faces; ++f) faceCellStart_[f + 1] = faceCellStart_[f] + (faceFirstQuad_[f + 1] - faceFirstQuad_[f]);
     cells_.assign(faceCellStart_.back(), 0);
     firstCorner_.assign(refined_.quads.size(), 0);
+    quadCell_.assign(refined_.quads.size(), 0);
     faceBounds_.assign(faces, Bounds3{});
     const uint32_t fullSide = 1u << desc_.levels;
     for (uint32_t q = 0; q < refined_.quads.size(); ++q) {
@@ -138,6 +139,7 @@ SubdivisionSurface::SubdivisionSurface(SubdivisionDesc desc) : desc_(std::move(d
         const uint32_t i = std::min(uint32_t(std::lround(sMin * m)), m - 1);
         const uint32_t j = std::min(uint32_t(std::lround(tMin * m)), m - 1);
         cells_[faceCellStart_[f] + (sub * m + j) * m + i] = q;
+        quadCell_[q] = (sub * m + j) * m + i;
         for (int c = 0; c < 4; ++c) {
             const SubFacePoint cp = decode(n, refined_.quadParams[q][c].x, refined_.quadParams[q][c].y);
             if (cp.s == sMin && cp.t == tMin) firstCorner_[q] = uint8_t(c);
@@ -156,6 +158,21 @@ SubdivisionSurface::SubdivisionSurface(SubdivisionDesc desc) : desc_(std::move(d
         b.max += pad;
         first += desc_.cage.faceSizes[f];
     }
+    // The corners' parameters and normal groups are in the tables now.
+    refined_.quadParams = {};
+    refined_.cornerGroup = {};
+}
+
+DVec2 SubdivisionSurface::cornerParam(uint32_t face, uint32_t quad, int corner) const noexcept {
+    // Counter-clockwise from the cell's (0, 0) corner: (0,0), (1,0), (1,1), (0,1).
+    static constexpr int kDx[4] = {0, 1, 1, 0}, kDy[4] = {0, 0, 1, 1};
+    const uint32_t n = desc_.cage.faceSizes[face];
+    const uint32_t m = n == 4 ? (1u << desc_.levels) : (1u << (desc_.levels - 1));
+    const uint32_t cell = quadCell_[quad], sub = cell / (m * m), j = (cell / m) % m, i = cell % m;
+    const int k = (corner - firstCorner_[quad] + 4) % 4;
+    const double s = double(i + uint32_t(kDx[k])) / m, t = double(j + uint32_t(kDy[k])) / m;
+    if (n == 4) return DVec2(s, t);
+    return DVec2(2.0 * double(sub % 4) + 0.5 + s, 2.0 * double(sub / 4) + 0.5 + t);
 }
 
 bool SubdivisionSurface::locate(uint32_t face, double u, double v, uint32_t& quad, std::array<double, 4>& weights,
@@ -168,9 +185,8 @@ bool SubdivisionSurface::locate(uint32_t face, double u, double v, uint32_t& qua
     quad = cells_[faceCellStart_[face] + (p.sub * m + j) * m + i];
     const double fs = p.s * m - i, ft = p.t * m - j;
     for (int c = 0; c < 4; ++c) {
-        const DVec2& cp = refined_.quadParams[quad][c];
-        const SubFacePoint cc = decode(n, cp.x, cp.y);
-        const bool right = cc.s * m - i > 0.5, top = cc.t * m - j > 0.5;
+        const int k = (c - firstCorner_[quad] + 4) % 4;  // 0 … 3: (0,0), (1,0), (1,1), (0,1) of the cell
+        const bool right = k == 1 || k == 2, top = k >= 2;
         const double ws = right ? fs : 1.0 - fs, wt = top ? ft : 1.0 - ft;
         weights[c] = ws * wt;
         if (dWeightsDu) (*dWeightsDu)[c] = (right ? 1.0 : -1.0) * wt * m;
@@ -200,8 +216,8 @@ bool SubdivisionSurface::intersect(const Ray& ray, uint32_t face, Hit& hit) cons
             if (!(t > double(ray.tnear) && t < best)) continue;
             best = t;
             found = true;
-            const auto& pp = refined_.quadParams[q];
-            const DVec2 uv = (1.0 - b1 - b2) * pp[ia] + b1 * pp[ib] + b2 * pp[ic];
+            const DVec2 uv = (1.0 - b1 - b2) * cornerParam(face, q, ia) + b1 * cornerParam(face, q, ib) +
+                             b2 * cornerParam(face, q, ic);
             hit.t = float(t);
             hit.u = float(uv.x);
             hit.v = float(uv.y);
@@ -303,11 +319,11 @@ std::string SubdivisionSurface::describe() const {
 }
 
 size_t SubdivisionSurface::memoryBytes() const {
-    return points_.size() * sizeof(DVec3) * 2 + offsets_.size() * sizeof(DVec3) +
-           refined_.uvs.size() * sizeof(DVec2) +
-           refined_.quads.size() * (sizeof(refined_.quads[0]) + sizeof(uint32_t) + sizeof(refined_.quadParams[0]) +
-                                    sizeof(refined_.cornerGroup[0]) + sizeof(normals_[0]) + sizeof(uint32_t)) +
-           faceBounds_.size() * sizeof(Bounds3);
+    return points_.size() * sizeof(DVec3) + offsets_.size() * sizeof(DVec3) + refined_.uvs.size() * sizeof(DVec2) +
+           refined_.quads.size() * (sizeof(refined_.quads[0]) + sizeof(uint32_t) + sizeof(normals_[0]) +
+                                    sizeof(quadCell_[0]) + sizeof(firstCorner_[0])) +
+           cells_.size() * sizeof(uint32_t) + faceBounds_.size() * sizeof(Bounds3) +
+           (faceFirstQuad_.size() + faceCellStart_.size()) * sizeof(uint32_t);
 }
 
 }  // namespace strahl

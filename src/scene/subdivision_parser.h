@@ -18,10 +18,10 @@ namespace strahl::scene_detail {
 // Fills shape.subdivision (and its kind and name) from the shape object.
 void parseSubdivisionShape(const JsonValue& v, const std::filesystem::path& folder, ShapeDesc& shape);
 
-// Bytes a refined quad costs: the reference tables (about 225 B) and
-// Embree's grids and BVH (about 35 B), measured with `strahl info` on a
-// subdivided cube at 5 levels.
-inline constexpr size_t kBytesPerRefinedQuad = 260;
+// Bytes a refined quad costs: the surface's tables (about 100 B: refined
+// points, corner normals, cells) and Embree's grids and BVH (about 40 B),
+// measured by bench_subdivision (bench/RESULTS.md) at 3 to 5 levels.
+inline constexpr size_t kBytesPerRefinedQuad = 150;
 
 // Where the camera puts a subdivision's refinement: the longest edge allowed
 // at a world-space point (edgeLengthFromCamera in scene_builder.cpp), and the

@@ -154,13 +154,13 @@ TEST(SubdivisionScene, LevelsFromScreenSpaceEdgeLength) {
     EXPECT_EQ(levelsFor("1").first, 7);
     EXPECT_EQ(levelsFor("1000").first, 1);
     // The memory limit caps them: 24 quads after one level, 24 · 4^(L−1) at
-    // L, 260 bytes each: 300 KB hold 3 levels (100 KB) but not 4 (399 KB).
+    // L, 150 bytes each: 200 KB hold 3 levels (58 KB) but not 4 (230 KB).
     SubdivisionCage cage = parse(cube("")).shapes.at(0).subdivision.cage;
     const auto tiny = [](const DVec3&) { return 1e-3; };
     bool capped = false;
     EXPECT_EQ(scene_detail::levelsForEdgeLength(cage, tiny, 0, capped), 8);
     EXPECT_FALSE(capped);
-    EXPECT_EQ(scene_detail::levelsForEdgeLength(cage, tiny, 300000, capped), 3);
+    EXPECT_EQ(scene_detail::levelsForEdgeLength(cage, tiny, 200000, capped), 3);
     EXPECT_TRUE(capped);
     EXPECT_THAT(errorOf(cube(R"("levels": 2, "max_edge_pixels": 3)")),
                 HasSubstr("give 'levels' or 'max_edge_pixels', not both"));

@@ -76,8 +76,11 @@ private:
     bool locate(uint32_t face, double u, double v, uint32_t& quad, std::array<double, 4>& weights,
                 std::array<double, 4>* dWeightsDu = nullptr, std::array<double, 4>* dWeightsDv = nullptr) const noexcept;
 
+    // Corner `corner` of refined quad `quad` in face parameters.
+    DVec2 cornerParam(uint32_t face, uint32_t quad, int corner) const noexcept;
+
     SubdivisionDesc desc_;
-    RefinedSurface refined_;
+    RefinedSurface refined_;  // its quads, control faces and uvs (the rest moved into the tables)
     std::vector<DVec3> points_;                        // refined positions, displaced
     std::vector<DVec3> offsets_;                       // displacement per refined vertex (empty: none)
     std::vector<std::array<Vec3, 4>> normals_;         // per quad corner, unit
@@ -86,6 +89,7 @@ private:
     std::vector<uint32_t> cells_;                      // cell → quad, per face, row by row per sub-face
     std::vector<Bounds3> faceBounds_;
     std::vector<uint8_t> firstCorner_;                 // per quad: its corner at the cell's (0, 0)
+    std::vector<uint32_t> quadCell_;                   // per quad: its cell within its face
 };
 
 }  // namespace strahl
