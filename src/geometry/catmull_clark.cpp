@@ -48,6 +48,8 @@ struct Level {
     uint32_t faceSize(size_t f) const { return faceStart[f + 1] - faceStart[f]; }
 };
 
+void buildVertexAdjacency(Level& level);
+
 uint64_t edgeKey(uint32_t a, uint32_t b) { return a < b ? (uint64_t(a) << 32 | b) : (uint64_t(b) << 32 | a); }
 
 // Builds the edges of `level` from its faces, and the vertex adjacency.
@@ -76,6 +78,12 @@ void buildTopology(Level& level, const std::string& name, std::unordered_map<uin
             level.cornerEdge[first + i] = it->second;
         }
     }
+    if (edgeIndexOut) *edgeIndexOut = std::move(edgeIndex);
+    buildVertexAdjacency(level);
+}
+
+// The edges and faces around every vertex (CSR), from the edges and faces.
+void buildVertexAdjacency(Level& level) {
     const size_t nv = level.p.size();
     level.vertexEdgeStart.assign(nv + 1, 0);
     level.vertexFaceStart.assign(nv + 1, 0);
@@ -96,7 +104,47 @@ void buildTopology(Level& level, const std::string& name, std::unordered_map<uin
     }
     for (uint32_t f = 0; f < level.faceCount(); ++f)
         for (uint32_t c = level.faceStart[f]; c < level.faceStart[f + 1]; ++c) level.vertexFaces[fillF[level.corners[c]]++] = f;
-    if (edgeIndexOut) *edgeIndexOut = std::move(edgeIndex);
+}
+
+// The next level's edges, known from the parent's without searching: parent
+// edge e (a, b) splits into 2e = (a, E_e) and 2e + 1 = (b, E_e); parent
+// corner c (of face f, on edge e_c) adds 2·ne + c = (E_c, F_f). Child face c
+// is (v, E_c, F, E_prev) with edges: e_c's child at v, c's inner edge,
+// prev's inner edge, e_prev's child at v.
+void buildChildTopology(const Level& parent, Level& next) {
+    const size_t nv = parent.p.size(), ne = parent.edges.size();
+    next.edges.assign(2 * ne + parent.corners.size(), Edge{});
+    for (size_t e = 0; e < ne; ++e) {
+        const Edge& pe = parent.edges[e];
+        const uint32_t mid = uint32_t(nv + e);
+        next.edges[2 * e].a = pe.a;
+        next.edges[2 * e].b = mid;
+        next.edges[2 * e + 1].a = pe.b;
+        next.edges[2 * e + 1].b = mid;
+    }
+    next.cornerEdge.assign(next.corners.size(), 0);
+    for (uint32_t f = 0; f < parent.faceCount(); ++f) {
+        const uint32_t first = parent.faceStart[f], n = parent.faceSize(f);
+        for (uint32_t i = 0; i < n; ++i) {
+            const uint32_t c = first + i, prev = first + (i + n - 1) % n;
+            const uint32_t v = parent.corners[c];
+            Edge& inner = next.edges[2 * ne + c];
+            inner.a = uint32_t(nv + parent.cornerEdge[c]);
+            inner.b = uint32_t(nv + ne + f);
+            const auto childAt = [&](uint32_t e) { return uint32_t(2 * e + (parent.edges[e].a == v ? 0 : 1)); };
+            const uint32_t child = c;  // child faces are made one per parent corner, in order
+            next.cornerEdge[4 * child + 0] = childAt(parent.cornerEdge[c]);
+            next.cornerEdge[4 * child + 1] = uint32_t(2 * ne + c);
+            next.cornerEdge[4 * child + 2] = uint32_t(2 * ne + prev);
+            next.cornerEdge[4 * child + 3] = childAt(parent.cornerEdge[prev]);
+        }
+    }
+    for (uint32_t f = 0; f < next.faceCount(); ++f)
+        for (uint32_t k = 0; k < 4; ++k) {
+            Edge& e = next.edges[next.cornerEdge[4 * f + k]];
+            e.faces[e.faceCount++] = f;
+        }
+    buildVertexAdjacency(next);
 }
 
 // The sharpness the rules see: boundary edges are infinitely sharp, and so
@@ -246,7 +294,7 @@ Level refine(const Level& level, SubdivisionBoundary mode, bool firstLevel, cons
     if (next.corners.size() / 4 > kMaxRefinedQuads)
         fail(name, ": ", next.corners.size() / 4, " refined quads at this level is too many (at most ",
              kMaxRefinedQuads, "); choose fewer levels");
-    buildTopology(next, name, nullptr);
+    buildChildTopology(level, next);
     // Child edges of a parent edge inherit its sharpness minus one — at a
     // crease vertex by Chaikin's rule, (3 s + s_other)/4 − 1 with s_other the
     // vertex's other crease edge; the edges inside a face (edge point to face
@@ -438,13 +486,16 @@ RefinedSurface refineCatmullClark(const SubdivisionCage& cage, int levels, const
         if (e.faceCount < 2 || e.sharpness > 0.0f) continue;
         for (uint32_t v : {e.a, e.b}) groups.unite(cornerOf(level, e.faces[0], v), cornerOf(level, e.faces[1], v));
     }
-    std::unordered_map<uint32_t, uint32_t> groupId;
+    // Number the groups in order of their first corner.
+    std::vector<uint32_t> groupOfRoot(level.corners.size(), UINT32_MAX);
     out.cornerGroup.resize(quads);
+    uint32_t groupCount = 0;
     for (size_t c = 0; c < level.corners.size(); ++c) {
-        const auto [it, inserted] = groupId.emplace(groups.find(uint32_t(c)), uint32_t(groupId.size()));
-        out.cornerGroup[c / 4][c % 4] = it->second;
+        uint32_t& id = groupOfRoot[groups.find(uint32_t(c))];
+        if (id == UINT32_MAX) id = groupCount++;
+        out.cornerGroup[c / 4][c % 4] = id;
     }
-    out.groupCount = uint32_t(groupId.size());
+    out.groupCount = groupCount;
     return out;
 }
 
