@@ -33,6 +33,8 @@
 //    Embree's grid points are the reference's refined points. A displaced
 //    surface gets a displacement function that adds the surface's own offset
 //    at each grid point's (face, u, v) (SubdivisionSurface::displacementAt).
+//  - A deforming mesh (TriangleMesh::laterPositions) has one vertex buffer per
+//    keyframe (rtcSetGeometryTimeStepCount), never quads.
 //  - Vertex and index buffers are shared with Embree (zero copy) when the
 //    mesh's position vector has the spare element Embree's 16-byte vertex loads
 //    need (TriangleMesh::reservePadding); otherwise they are copied once into an
@@ -319,19 +321,28 @@ private:
             if (!pairs) pairs = std::make_unique<QuadFaces>(pairTriangles(mesh));
             return *pairs;
         };
-        if (tracesAsQuads(quads_, mesh.triangleCount(), pairing)) quads = quadFaces_.emplace_back(std::move(pairs)).get();
+        // A deforming mesh stays triangles: its pairs need not stay planar.
+        if (!mesh.deforms() && tracesAsQuads(quads_, mesh.triangleCount(), pairing))
+            quads = quadFaces_.emplace_back(std::move(pairs)).get();
         RTCGeometry geom = rtcNewGeometry(device(), quads ? RTC_GEOMETRY_TYPE_QUAD : RTC_GEOMETRY_TYPE_TRIANGLE);
         // The scene's quality picks its builder, the geometry's how the mesh's
         // own triangles are split: spatial splits (high) need both.
         rtcSetGeometryBuildQuality(geom, quality());
         const size_t nv = mesh.vertexCount(), nt = mesh.triangleCount();
-        if (mesh.isPadded()) {
-            rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                       mesh.positions.data(), 0, sizeof(Vec3), nv);
-        } else {
-            void* dst = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                sizeof(Vec3), nv);
-            if (dst) std::memcpy(dst, mesh.positions.data(), nv * sizeof(Vec3));
+        // A deforming mesh has one vertex buffer per time step, equally
+        // spaced over the ray time [0, 1] (core/motion.h interpolates the same).
+        if (mesh.deforms()) rtcSetGeometryTimeStepCount(geom, static_cast<unsigned>(mesh.keyframeCount()));
+        for (size_t step = 0; step < mesh.keyframeCount(); ++step) {
+            const std::vector<Vec3>& positions = mesh.keyframePositions(step);
+            const auto slot = static_cast<unsigned>(step);
+            if (mesh.isPadded()) {
+                rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, slot, RTC_FORMAT_FLOAT3, positions.data(), 0,
+                                           sizeof(Vec3), nv);
+            } else {
+                void* dst = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, slot, RTC_FORMAT_FLOAT3,
+                                                    sizeof(Vec3), nv);
+                if (dst) std::memcpy(dst, positions.data(), nv * sizeof(Vec3));
+            }
         }
         if (quads) {
             rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, quads->corners.data(), 0,

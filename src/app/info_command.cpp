@@ -37,9 +37,10 @@ void printShapes(const std::vector<SceneShape>& shapes, const char* indent) {
             continue;
         }
         const TriangleMesh& m = shape.mesh;
-        std::printf("%s[%zu] %-24s %10zu triangles %10zu vertices%s%s%s\n", indent, i,
+        std::printf("%s[%zu] %-24s %10zu triangles %10zu vertices%s%s%s%s\n", indent, i,
                     shape.name.c_str(), m.triangleCount(), m.vertexCount(),
                     m.normals.empty() ? "" : " normals", m.uvs.empty() ? "" : " uvs",
+                    m.deforms() ? concat(" deforming over ", m.keyframeCount(), " keyframes").c_str() : "",
                     shape.tessellated
                         ? (" tessellated " + shape.tessellated->surface().describe() +
                            (shape.tessellated->normals() == ParametricNormals::Exact ? ", exact normals"

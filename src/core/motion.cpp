@@ -13,14 +13,17 @@
 
 namespace strahl {
 
-Mat4 keyframeAt(std::span<const Mat4> keys, float time) {
-    if (keys.size() == 1) return keys[0];
-    const float segments = float(keys.size() - 1);
+KeyframeSegment keyframeSegment(size_t count, float time) {
+    const float segments = float(count - 1);
     const float scaled = std::clamp(time, 0.0f, 1.0f) * segments;
     const float k = std::clamp(std::floor(scaled), 0.0f, segments - 1.0f);
-    const float f = scaled - k;
-    const size_t i = static_cast<size_t>(k);
-    return (1.0f - f) * keys[i] + f * keys[i + 1];
+    return {static_cast<size_t>(k), scaled - k};
+}
+
+Mat4 keyframeAt(std::span<const Mat4> keys, float time) {
+    if (keys.size() == 1) return keys[0];
+    const KeyframeSegment s = keyframeSegment(keys.size(), time);
+    return (1.0f - s.fraction) * keys[s.index] + s.fraction * keys[s.index + 1];
 }
 
 namespace {

@@ -63,7 +63,7 @@ SurfaceInteraction World::interaction(const Ray& ray, const Hit& hit) const {
     const auto local = [&](const Ray& r) {
         if (s.user) return s.user->interaction(r, hit);
         if (s.tessellated) return s.tessellated->interaction(s.mesh, hit.primID, hit.u, hit.v);
-        return triangleInteraction(s.mesh, hit.primID, hit.u, hit.v);
+        return triangleInteraction(s.mesh, hit.primID, hit.u, hit.v, r.time);
     };
     if (!inst) return local(ray);
     if (inst->moves()) {  // placed where the ray's time finds it, as the accelerator did
@@ -75,7 +75,12 @@ SurfaceInteraction World::interaction(const Ray& ray, const Hit& hit) const {
 }
 
 bool World::hasMotion() const {
-    return std::any_of(instances.begin(), instances.end(), [](const SceneInstance& i) { return i.moves(); });
+    const auto deforming = [](const std::vector<SceneShape>& list) {
+        return std::any_of(list.begin(), list.end(), [](const SceneShape& s) { return s.isMesh() && s.mesh.deforms(); });
+    };
+    return std::any_of(instances.begin(), instances.end(), [](const SceneInstance& i) { return i.moves(); }) ||
+           deforming(shapes) ||
+           std::any_of(prototypes.begin(), prototypes.end(), [&](const Prototype& p) { return deforming(p.shapes); });
 }
 
 AccelScene World::accelScene() const {

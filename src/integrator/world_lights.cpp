@@ -72,7 +72,8 @@ void World::prepareLights() {
 
     const auto addShape = [&](const SceneShape& shape, uint32_t instID, uint32_t geomID,
                               const Mat4* toWorld) {
-        if (!shape.isMesh()) return;
+        // A deforming emitter, like a moving one, is found by BSDF sampling.
+        if (!shape.isMesh() || shape.mesh.deforms()) return;
         bool emits = false;
         for (uint32_t m : shape.materialOfSlot) emits |= lightSampled(materials[m], shape);
         if (!emits) return;

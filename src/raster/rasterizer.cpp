@@ -360,6 +360,9 @@ void requireRasterizable(const World& world) {
         else if (shape.cutout)
             fail("the rasterizer draws solid triangles only, but shape '", shape.name,
                  "' has a material with an opacity (a cut-out); use --algorithm raytrace for it");
+        else if (shape.mesh.deforms())
+            fail("the rasterizer draws meshes at rest only, but shape '", shape.name,
+                 "' deforms (motion blur); use --algorithm raytrace for it");
     if (!world.instances.empty())
         fail("the rasterizer draws top-level meshes only, but the scene has ",
              world.instances.size(), " instance(s); use --algorithm raytrace for it");

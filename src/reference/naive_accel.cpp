@@ -99,8 +99,11 @@ public:
     }
 
 private:
-    static const Vec3& vertex(const TriangleMesh& mesh, size_t tri, size_t corner) {
-        return mesh.positions[mesh.indices[3 * tri + corner]];
+    // A vertex of triangle `tri` where it is at the ray's time (a deforming
+    // mesh's, interpolated as Embree interpolates its time steps).
+    static Vec3 vertex(const TriangleMesh& mesh, size_t tri, size_t corner, float time) {
+        const uint32_t v = mesh.indices[3 * tri + corner];
+        return mesh.deforms() ? mesh.positionAt(v, time) : mesh.positions[v];
     }
 
     // Whether a triangle hit is on the solid part of its mesh's cut-out.
@@ -121,8 +124,8 @@ private:
                 for (size_t tri = 0; tri < triangles; ++tri) {
                     Hit candidate;
                     if (intersectTriangleWatertight(rayInRaySpace, ray.tnear, tfar,
-                                                    vertex(*mesh, tri, 0), vertex(*mesh, tri, 1),
-                                                    vertex(*mesh, tri, 2), candidate) &&
+                                                    vertex(*mesh, tri, 0, ray.time), vertex(*mesh, tri, 1, ray.time),
+                                                    vertex(*mesh, tri, 2, ray.time), candidate) &&
                         solid(cutout, tri, candidate)) {
                         closest = candidate;
                         tfar = closest.t;
@@ -157,8 +160,8 @@ private:
                 for (size_t tri = 0; tri < triangles; ++tri) {
                     Hit candidate;
                     if (intersectTriangleWatertight(rayInRaySpace, ray.tnear, ray.tfar,
-                                                    vertex(*mesh, tri, 0), vertex(*mesh, tri, 1),
-                                                    vertex(*mesh, tri, 2), candidate) &&
+                                                    vertex(*mesh, tri, 0, ray.time), vertex(*mesh, tri, 1, ray.time),
+                                                    vertex(*mesh, tri, 2, ray.time), candidate) &&
                         solid(shape.cutout, tri, candidate))
                         return true;
                 }

@@ -98,7 +98,28 @@ TriangleMesh parseInlineMesh(const JsonValue& v, const std::string& label) {
         mesh.indices.push_back(static_cast<uint32_t>(
             indices.at(i).unsignedInteger(std::numeric_limits<uint32_t>::max())));
     }
-    if (auto normals = v.find("normals")) {
+    if (auto deform = v.find("deform")) {
+        // Keyframes 1 … K − 1 of the positions (`positions` is keyframe 0).
+        if (deform->size() < 1 || deform->size() + 1 > kMaxKeyframes)
+            deform->fail("expected an array of 1 to ", kMaxKeyframes - 1,
+                         " keyframes of the positions (after 'positions'), got ", deform->size());
+        for (size_t k = 0; k < deform->size(); ++k) {
+            const JsonValue key = deform->at(k);
+            if (!key.raw().is_array() || key.size() != mesh.positions.size())
+                key.fail("expected ", mesh.positions.size(), " positions (as many as 'positions'), got ",
+                         key.raw().is_array() ? concat(key.size()) : key.describe());
+            std::vector<Vec3>& list = mesh.laterPositions.emplace_back();
+            list.reserve(key.size() + 1);  // Embree's padding
+            for (size_t i = 0; i < key.size(); ++i) {
+                Vec3 p;
+                list.push_back(readVec3Directly(key.raw()[i], p) ? p : key.at(i).vec3());
+            }
+        }
+    }
+    if (auto normals = v.find("normals"); normals && normals->raw().is_array()) {
+        if (v.has("deform"))
+            normals->fail("a deforming mesh's normals follow it: give \"normals\": \"smooth\" (computed at every "
+                          "keyframe) or none");
         mesh.normals.reserve(normals->size());
         for (size_t i = 0; i < normals->size(); ++i) {
             Vec3 n;
@@ -225,7 +246,7 @@ ShapeDesc parseShape(const JsonValue& v, const ShapeContext& context) {
         if (auto flip = v.find("flip_normals")) s.flipNormals = flip->boolean();
     } else {
         v.requireKeys({"type", "name", "file", "positions", "indices", "normals", "uvs",
-                       "material", "transform", "motion", "flip_normals", "shape_index", "subdivision"});
+                       "material", "transform", "motion", "flip_normals", "shape_index", "subdivision", "deform"});
         parseMeshSource(v, folder, label, s);
         if (auto flip = v.find("flip_normals")) s.flipNormals = flip->boolean();
         if (auto index = v.find("shape_index")) {
@@ -291,7 +312,7 @@ void parseMeshSource(const JsonValue& v, const fs::path& folder, const std::stri
     const auto file = v.find("file");
     if (file && v.has("positions")) v.fail("'file' and 'positions' are exclusive: give one");
     if (file) {
-        for (std::string_view key : {"indices", "uvs", "subdivision"}) {
+        for (std::string_view key : {"indices", "uvs", "subdivision", "deform"}) {
             if (auto extra = v.find(key))
                 extra->fail("only for inline meshes (with 'positions'), not with 'file'");
         }
@@ -310,6 +331,12 @@ void parseMeshSource(const JsonValue& v, const fs::path& folder, const std::stri
     } else if (v.has("positions")) {
         s.inlineMesh = parseInlineMesh(v, label);
         s.name = s.where;
+        if (auto normals = v.find("normals"); normals && !normals->raw().is_array()) {
+            // "smooth": computed (angle-weighted, at every keyframe of a
+            // deforming mesh) after the transform; "flat": none.
+            const std::string n = normals->oneOf({"flat", "smooth"});
+            s.fileNormals = n == "smooth" ? ShapeDesc::FileNormals::Smooth : ShapeDesc::FileNormals::Flat;
+        }
         if (auto subdivision = v.find("subdivision")) {
             // {"scheme": "loop", "levels": n}: the control mesh subdivided
             // (geometry/loop_subdivision.h), with its own smooth normals.
@@ -317,7 +344,7 @@ void parseMeshSource(const JsonValue& v, const fs::path& folder, const std::stri
             subdivision->get("scheme").oneOf({"loop"});
             int levels = 3;
             if (auto l = subdivision->find("levels")) levels = static_cast<int>(l->integer(0, kMaxLoopLevels));
-            for (std::string_view key : {"normals", "uvs"})
+            for (std::string_view key : {"normals", "uvs", "deform"})
                 if (auto extra = v.find(key)) extra->fail("not with 'subdivision' (the subdivided mesh has its own)");
             s.inlineMesh = loopSubdivide(s.inlineMesh, levels, concat(label, ": ", subdivision->pointer()));
         }

@@ -103,7 +103,8 @@ void parseSubdivisionShape(const JsonValue& v, const std::filesystem::path& fold
         for (size_t f = 0; f < faces.size(); ++f) {
             const JsonValue face = faces.at(f);
             if (!face.raw().is_array() || face.size() < 3 || face.size() > size_t(kMaxFaceSize))
-                face.fail("expected an array of 3 to ", kMaxFaceSize, " vertex indices, got ", face.describe());
+                face.fail("expected an array of 3 to ", kMaxFaceSize, " vertex indices, got ",
+                          face.raw().is_array() ? concat(face.size(), " indices") : face.describe());
             for (size_t k = 0; k < face.size(); ++k)
                 cage.indices.push_back(uint32_t(face.at(k).integer(0, int64_t(cage.positions.size()) - 1)));
             cage.faceSizes.push_back(uint32_t(face.size()));

@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "strahl/core/error.h"
 
 namespace strahl {
@@ -130,5 +132,59 @@ TEST(TriangleMesh, FlipOrientationTurnsTheWindingAndTheNormals) {
     // The geometric normal follows the winding: now -z.
     EXPECT_LT(triangleInteraction(m, 0, 0.25f, 0.25f).Ng.z, 0.0f);
 }
+
+namespace {
+
+// One triangle that grows from unit size at time 0 to 3 at time 1, through 2
+// at time 1/2 (three keyframes).
+TriangleMesh growingTriangle() {
+    TriangleMesh m;
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    m.indices = {0, 1, 2};
+    m.laterPositions = {{{0, 0, 0}, {2, 0, 0}, {0, 2, 0}}, {{0, 0, 0}, {3, 0, 0}, {0, 3, 0}}};
+    return m;
+}
+
+TEST(TriangleMesh, DeformingMeshesInterpolateTheirKeyframes) {
+    TriangleMesh m = growingTriangle();
+    ASSERT_TRUE(m.deforms());
+    EXPECT_EQ(m.keyframeCount(), 3u);
+    EXPECT_EQ(m.positionAt(1, 0.0f), Vec3(1, 0, 0));
+    EXPECT_EQ(m.positionAt(1, 0.25f), Vec3(1.5f, 0, 0));
+    EXPECT_EQ(m.positionAt(1, 0.75f), Vec3(2.5f, 0, 0));
+    EXPECT_EQ(m.positionAt(1, 2.0f), Vec3(3, 0, 0));  // clamped to the frame
+    EXPECT_EQ(m.bounds().max, Vec3(3, 3, 0));
+    // The interaction at a time is on the triangle there.
+    EXPECT_NEAR(triangleInteraction(m, 0, 0.5f, 0.0f, 0.75f).p.x, 1.25f, 1e-6f);
+    m.computeVertexNormals();
+    ASSERT_EQ(m.laterNormals.size(), 2u);
+    EXPECT_EQ(m.laterNormals[1][2], Vec3(0, 0, 1));
+    m.flipOrientation();
+    EXPECT_EQ(m.laterNormals[0][0], Vec3(0, 0, -1));
+    m.transform(glm::translate(Mat4(1.0f), Vec3(0, 0, 5)));
+    EXPECT_EQ(m.laterPositions[1][1], Vec3(3, 0, 5));
+    m.reservePadding();
+    EXPECT_TRUE(m.isPadded());
+}
+
+TEST(TriangleMesh, DeformingMeshesAreValidated) {
+    TriangleMesh m = growingTriangle();
+    m.laterPositions[1].pop_back();
+    EXPECT_THROW(m.validate("tri"), Error);
+    m = growingTriangle();
+    m.laterPositions[0][2].y = NAN;
+    try {
+        m.validate("tri");
+        ADD_FAILURE() << "accepted a NaN keyframe";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("tri: vertex 2 has a non-finite coordinate at keyframe 1"), std::string::npos)
+            << e.what();
+    }
+    m = growingTriangle();
+    m.laterNormals = {{{0, 0, 1}, {0, 0, 1}, {0, 0, 1}}};  // one list for two later keyframes
+    EXPECT_THROW(m.validate("tri"), Error);
+}
+
+}  // namespace
 
 }  // namespace strahl

@@ -100,3 +100,39 @@ TEST(MotionScene, ACameraWithoutShutterSeesTheWholeFrame) {
 
 }  // namespace
 }  // namespace strahl
+
+namespace strahl {
+namespace {
+
+TEST(MotionScene, DeformingInlineMeshes) {
+    const std::string text = R"({
+      "shapes": [{"type": "mesh", "name": "tri", "positions": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "indices": [0, 1, 2],
+                  "normals": "smooth", "transform": [{"translate": [0, 0, 2]}],
+                  "deform": [[[0, 0, 1], [1, 0, 1], [0, 1, 1]], [[0, 0, 0], [2, 0, 0], [0, 2, 0]]]}]})";
+    const SceneDesc desc = parseSceneText(text, test::scratchDir("deform") / "scene.json");
+    EXPECT_EQ(desc.shapes[0].inlineMesh.keyframeCount(), 3u);
+    const World world = buildWorld(desc, BuildOptions{});
+    const TriangleMesh& mesh = world.shapes.at(0).mesh;
+    ASSERT_TRUE(mesh.deforms());
+    EXPECT_EQ(mesh.laterPositions[1][1], Vec3(2, 0, 2));  // moved by the transform
+    EXPECT_EQ(mesh.laterNormals.size(), 2u);              // smooth normals at every keyframe
+    EXPECT_EQ(mesh.positionAt(1, 0.25f), Vec3(1, 0, 2.5f));
+    EXPECT_TRUE(world.hasMotion());
+    const auto error = [&](const std::string& shape) {
+        return test::errorMessage([&] {
+            parseSceneText(R"({"shapes": [)" + shape + "]}", test::scratchDir("deform") / "scene.json");
+        });
+    };
+    const std::string tri = R"({"type": "mesh", "positions": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "indices": [0, 1, 2], )";
+    EXPECT_TRUE(test::contains(error(tri + R"("deform": [[[0, 0, 0], [1, 0, 0]]]})"),
+                               "/shapes/0/deform/0: expected 3 positions (as many as 'positions'), got 2"));
+    EXPECT_TRUE(test::contains(error(tri + R"("deform": []})"), "/shapes/0/deform: expected an array of 1 to 128 keyframes of the positions (after 'positions'), got 0"));
+    EXPECT_TRUE(test::contains(error(tri + R"("deform": [[[0, 0, 0], [1, 0, 0], [0, 1, "x"]]]})"), "/shapes/0/deform/0/2"));
+    EXPECT_TRUE(test::contains(error(tri + R"("normals": [[0, 0, 1], [0, 0, 1], [0, 0, 1]], "deform": [[[0, 0, 0], [1, 0, 0], [0, 1, 0]]]})"),
+                               "/shapes/0/normals: a deforming mesh's normals follow it"));
+    EXPECT_TRUE(test::contains(error(R"({"type": "mesh", "file": "a.obj", "deform": []})"),
+                               "only for inline meshes (with 'positions'), not with 'file'"));
+}
+
+}  // namespace
+}  // namespace strahl

@@ -431,7 +431,7 @@ TEST(SceneParser, UnknownKeysNameTheObjectAndTheAllowedKeys) {
               "roughness, roughness_u, roughness_v, distribution, masking)");
     EXPECT_EQ(errorOf(triangleWith(R"("faces": [0, 1, 2])")),
               "scene.json: /shapes/0: unknown key 'faces' (allowed: type, name, file, positions, "
-              "indices, normals, uvs, material, transform, motion, flip_normals, shape_index, subdivision)");
+              "indices, normals, uvs, material, transform, motion, flip_normals, shape_index, subdivision, deform)");
     EXPECT_EQ(
         errorWith(R"("lights": [{"type": "point", "position": [0,0,0], "direction": [1,0,0]}])"),
         "scene.json: /lights/0: unknown key 'direction' (allowed: type, position, intensity)");
@@ -578,7 +578,7 @@ TEST(SceneParser, ShapeErrors) {
     EXPECT_EQ(errorOf(R"({"shapes": [{"positions": [[0,0,0]], "indices": [0,0,0]}]})"),
               "scene.json: /shapes/0: missing key 'type'");
     EXPECT_EQ(errorOf(R"({"shapes": [{"type": "sphere"}]})"),
-              "scene.json: /shapes/0/type: must be one of mesh, implicit, parametric, curves, instance, got 'sphere'");
+              "scene.json: /shapes/0/type: must be one of mesh, implicit, parametric, curves, subdivision, instance, got 'sphere'");
     EXPECT_EQ(errorOf(R"({"shapes": [{"type": "mesh"}]})"),
               "scene.json: /shapes/0: needs 'file' (a mesh file) or 'positions' (an inline mesh)");
     EXPECT_EQ(errorOf(triangleWith(R"("file": "a.ply")")),

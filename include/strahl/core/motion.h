@@ -20,8 +20,17 @@
 
 namespace strahl {
 
-// The transform at frame time `time` (clamped to [0, 1]). Keyframe k covers
-// segment [k, k + 1) of time · (n - 1), as Embree splits it.
+// Where frame time `time` (clamped to [0, 1]) falls among `count` >= 2
+// keyframes: between keyframe `index` and index + 1, at `fraction` of the
+// way. Keyframe k covers segment [k, k + 1) of time · (count - 1), as Embree
+// splits it (for instances and for the vertex time steps of deforming meshes).
+struct KeyframeSegment {
+    size_t index = 0;
+    float fraction = 0.0f;
+};
+KeyframeSegment keyframeSegment(size_t count, float time);
+
+// The transform at frame time `time`: keyframeSegment's two keyframes, blended.
 Mat4 keyframeAt(std::span<const Mat4> keys, float time);
 
 // A motion given by its start and end transforms that turns rotations as

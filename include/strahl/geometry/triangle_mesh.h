@@ -21,13 +21,27 @@ struct TriangleMesh {
     std::vector<uint32_t> indices;  // three per triangle, counter-clockwise = front
     std::vector<uint32_t> faceMaterials;  // empty, or one slot per triangle
     std::vector<MeshAttribute> attributes;  // what textures may read (mesh_attribute.h)
+    // A deforming mesh: its positions at further keyframes, one list per
+    // keyframe and one position per vertex; `positions` is the first. With K
+    // keyframes in all, keyframe k is the mesh at frame time k / (K − 1),
+    // linearly between (core/motion.h, as Embree interpolates vertex time
+    // steps). Empty: at rest. Shading normals, if any, follow the same
+    // keyframes: `laterNormals` holds them for the later ones.
+    std::vector<std::vector<Vec3>> laterPositions;
+    std::vector<std::vector<Vec3>> laterNormals;
 
     size_t triangleCount() const { return indices.size() / 3; }
     size_t vertexCount() const { return positions.size(); }
+    bool deforms() const { return !laterPositions.empty(); }
+    size_t keyframeCount() const { return 1 + laterPositions.size(); }
+    const std::vector<Vec3>& keyframePositions(size_t k) const { return k == 0 ? positions : laterPositions[k - 1]; }
+    // Vertex `vertex` at frame time `time` (its position, at rest).
+    Vec3 positionAt(uint32_t vertex, float time) const;
     Bounds3 bounds() const;
     size_t memoryBytes() const;
 
-    // Applies an affine transform: positions by m, normals by its inverse transpose.
+    // Bounds over every keyframe. Applies an affine transform (every keyframe):
+    // positions by m, normals by its inverse transpose.
     void transform(const Mat4& m);
 
     // Sets one shading normal per vertex: the mean of the unit normals of the
@@ -44,16 +58,25 @@ struct TriangleMesh {
 
     // Throws strahl::Error naming `source` on a NaN/Inf coordinate, an index out
     // of range, or attribute arrays whose sizes disagree with the positions
-    // (or, for face attributes, the triangles).
+    // (or, for face attributes, the triangles), or keyframes that do (more
+    // than kMaxKeyframes in all, core/motion.h).
     void validate(const std::string& source) const;
 
     // Embree reads vertex buffers with 16-byte loads, so a buffer shared with it
     // needs readable memory behind the last vertex: reserve one spare element.
-    void reservePadding() { positions.reserve(positions.size() + 1); }
-    bool isPadded() const { return positions.capacity() > positions.size(); }
+    void reservePadding() {
+        positions.reserve(positions.size() + 1);
+        for (std::vector<Vec3>& key : laterPositions) key.reserve(key.size() + 1);
+    }
+    bool isPadded() const {
+        for (const std::vector<Vec3>& key : laterPositions)
+            if (key.capacity() <= key.size()) return false;
+        return positions.capacity() > positions.size();
+    }
 };
 
-// Interaction on triangle `prim` at Embree barycentrics (u, v).
-SurfaceInteraction triangleInteraction(const TriangleMesh& mesh, uint32_t prim, float u, float v);
+// Interaction on triangle `prim` at Embree barycentrics (u, v), at frame
+// time `time` (which only a deforming mesh depends on).
+SurfaceInteraction triangleInteraction(const TriangleMesh& mesh, uint32_t prim, float u, float v, float time = 0.0f);
 
 }  // namespace strahl

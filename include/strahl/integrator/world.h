@@ -146,7 +146,8 @@ struct World {
     // As rendered: every instance counts its prototype's triangles again.
     size_t instancedTriangleCount() const;
     size_t shapeMemoryBytes() const;
-    // Whether some instance moves (camera rays then sample the shutter).
+    // Whether some instance moves or some mesh deforms (camera rays then
+    // sample the shutter).
     bool hasMotion() const;
 
 private:
