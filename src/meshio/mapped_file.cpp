@@ -1,6 +1,6 @@
 // MappedFile: open, check that the file is regular, map it read-only.
 
-#include "mapped_file.h"
+#include "strahl/meshio/mapped_file.h"
 
 #include <fcntl.h>
 #include <sys/mman.h>

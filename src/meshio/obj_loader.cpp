@@ -17,7 +17,7 @@
 #include <utility>
 
 #include "loader_tuning.h"
-#include "mapped_file.h"
+#include "strahl/meshio/mapped_file.h"
 #include "mtl_reader.h"
 #include "obj_chunks.h"
 #include "strahl/meshio/mesh_file.h"

@@ -19,7 +19,7 @@
 
 #include "loader_tuning.h"
 #include "inflate.h"
-#include "mapped_file.h"
+#include "strahl/meshio/mapped_file.h"
 #include "ply_header.h"
 #include "ply_parallel.h"
 #include "ply_sequential.h"

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "inflate.h"
-#include "mapped_file.h"
+#include "strahl/meshio/mapped_file.h"
 #include "strahl/core/error.h"
 #include "strahl/meshio/mesh_format.h"
 

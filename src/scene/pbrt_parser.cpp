@@ -4,6 +4,8 @@
 
 #include "pbrt_parser.h"
 
+#include "strahl/meshio/mapped_file.h"
+
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -178,7 +180,7 @@ public:
         scene_.materials.push_back(diffuse);
     }
 
-    void parseFile(const std::string& text, const std::string& label, const fs::path& path, int depth) {
+    void parseFile(std::string_view text, const std::string& label, const fs::path& path, int depth) {
         const fs::path canonical = fs::weakly_canonical(fs::absolute(path));
         openFiles_.insert(canonical);
         Tokenizer tokens(text, label);
@@ -398,14 +400,17 @@ private:
         if (!fs::is_regular_file(path, ec))
             error(tokens, t, std::string(t.text) + " \"" + name + "\": cannot open " + path.string() +
                                  (fs::exists(path, ec) ? " (not a regular file)" : " (no such file)"));
-        std::ifstream in(path, std::ios::binary);
-        if (!in) error(tokens, t, std::string(t.text) + " \"" + name + "\": cannot open " + path.string());
-        std::ostringstream text;
-        text << in.rdbuf();
-        if (in.bad()) error(tokens, t, std::string(t.text) + " \"" + name + "\": cannot read " + path.string());
         if (name.size() > 3 && name.substr(name.size() - 3) == ".gz")
             error(tokens, t, std::string(t.text) + " \"" + name + "\": compressed scene files are not supported");
-        parseFile(text.str(), name, path, depth + 1);
+        // Tokenized in place from a memory map: an included geometry file of
+        // gigabytes is never copied.
+        std::optional<meshio::MappedFile> mapped;
+        try {
+            mapped.emplace(path);
+        } catch (const Error& e) {
+            error(tokens, t, std::string(t.text) + " \"" + name + "\": " + e.what());
+        }
+        parseFile(mapped->bytes(), name, path, depth + 1);
     }
 
     void directive(Tokenizer& tokens, const Token& t, int depth) {

@@ -1,7 +1,8 @@
 #pragma once
 // A read-only memory mapping of a whole regular file (POSIX mmap, MAP_PRIVATE),
-// unmapped when the object goes away. The PLY loader decodes straight from it:
-// no copy of the file, and several threads can read it at once.
+// unmapped when the object goes away. The PLY loader decodes straight from it
+// and the pbrt importer tokenizes its included files in place: no copy of the
+// file, and several threads can read it at once.
 
 #include <cstddef>
 #include <filesystem>
