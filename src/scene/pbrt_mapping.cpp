@@ -3,6 +3,9 @@
 
 #include "pbrt_mapping.h"
 
+#include "image_reader.h"
+#include "strahl/core/equal_area.h"
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -23,6 +26,30 @@
 namespace strahl::scene_detail::pbrt {
 
 namespace {
+
+// The illuminance that pbrt-v4's equal-area square image `file` sends to a
+// surface facing +z in the light's frame: Σ Y(pixel) cos θ · 4π / pixels over
+// the pixels whose direction has z > 0 (cos θ = z), Y the Rec. 709
+// luminance. In the octahedral layout z depends only on the pixel centre's
+// distance from the centre, |2u − 1| + |2v − 1| = r: z = 1 − r² inside the
+// central diamond (equalAreaSquareToSphere), so the image's orientation does
+// not matter.
+double upperHemisphereIlluminance(const std::filesystem::path& file) {
+    const FloatImage image = readFloatImage(file, "environment image", size_t(1) << 28);
+    double sum = 0.0;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const Vec3 w = equalAreaSquareToSphere(Vec2((float(x) + 0.5f) / float(image.width),
+                                                        (float(y) + 0.5f) / float(image.height)));
+            if (w.z <= 0.0f) continue;
+            const float* p = &image.pixels[(size_t(y) * size_t(image.width) + size_t(x)) * size_t(image.channels)];
+            const double luminance =
+                image.channels == 1 ? double(p[0]) : 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+            sum += luminance * double(w.z);
+        }
+    return sum * 4.0 * glm::pi<double>() / (double(image.width) * double(image.height));
+}
+
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
@@ -1026,7 +1053,8 @@ private:
             if (e.params.find("displacement")) bad(*e.params.find("displacement"), "displacement is not supported");
             param(e, "edgelength");
             shape = {{"type", "mesh"}, {"file", path}};
-            hasNormals = plyFileHasVertexNormals(path);
+            // Resolved as pbrt resolves it: against the main file's folder.
+            hasNormals = plyFileHasVertexNormals(fs::path(path).is_absolute() ? fs::path(path) : s_.folder / path);
         } else if (e.type == "sphere") {
             const double radius = number(e, "radius", 1.0);
             if (!(radius > 0.0)) unsupported(e, "radius must be positive");
@@ -1364,7 +1392,18 @@ private:
             // of pbrt's world direction (the mirror of strahl's).
             const Parameter* f = typed(e, "filename", {"string"});
             if (e.params.find("L")) unsupported(e, "give either L or filename");
-            if (e.params.find("illuminance")) unsupported(e, "illuminance with an image is not supported");
+            double imageScale = scale;
+            if (const Parameter* E = typed(e, "illuminance", {"float"})) {
+                // pbrt-v4 scales the image so that a surface facing the
+                // light's +z receives E: E_image = Σ L(w) cos θ dω over the
+                // pixels of the upper hemisphere, each dω = 4π / pixels
+                // (the layout has equal areas).
+                const fs::path name = f->strings.at(0);
+                const double illuminance =
+                    upperHemisphereIlluminance(name.is_absolute() ? name : s_.folder / name);
+                if (!(illuminance > 0.0)) bad(*E, "the image sends no light to a surface facing up (+z)");
+                imageScale *= E->numbers[0] / illuminance;
+            }
             const glm::dmat3 mapFromWorld = glm::inverse(glm::dmat3(l.toWorld)) * glm::dmat3(mirror_);
             json rows = json::array();
             for (int r = 0; r < 3; ++r)
@@ -1372,7 +1411,7 @@ private:
             param(e, "portal");  // where pbrt samples, not what it shows
             out = {{"type", "environment"}, {"file", file(*f)}, {"mapping", "equal_area"},
                    {"map_transform", rows}};
-            if (scale != 1.0) out["scale"] = scale;
+            if (imageScale != 1.0) out["scale"] = imageScale;
         } else if (e.type == "infinite") {
             glm::dvec3 L = spectral("L") * scale;
             if (const Parameter* E = typed(e, "illuminance", {"float"}))

@@ -467,13 +467,13 @@ TEST(PbrtImport, MalformedOrUnsupportedInputIsOneErrorWithItsLine) {
 }
 
 // An equal-area square that is 1 where the image's +z is up (z > 0) and 0 below.
-void writeUpperHemisphereMap(const fs::path& file, int n) {
+void writeUpperHemisphereMap(const fs::path& file, int n, float value = 1.0f) {
     std::vector<float> pixels(size_t(n) * size_t(n) * 3);
     for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x) {
             const Vec3 d = equalAreaSquareToSphere(
                 Vec2((static_cast<float>(x) + 0.5f) / static_cast<float>(n), (static_cast<float>(y) + 0.5f) / static_cast<float>(n)));
-            for (int c = 0; c < 3; ++c) pixels[(size_t(y) * n + x) * 3 + c] = d.z > 0.0f ? 1.0f : 0.0f;
+            for (int c = 0; c < 3; ++c) pixels[(size_t(y) * n + x) * 3 + c] = d.z > 0.0f ? value : 0.0f;
         }
     auto out = OIIO::ImageOutput::create(file.string());
     ASSERT_TRUE(out && out->open(file.string(), OIIO::ImageSpec(n, n, 3, OIIO::TypeDesc::FLOAT)));
@@ -554,6 +554,28 @@ TEST(PbrtImport, AnImageInfiniteLightIsAnEqualAreaMapInTheLightsFrame) {
                               kTriangle),
                         dir / "scene.pbrt"),
                 HasSubstr("give either L or filename"));
+}
+
+TEST(PbrtImport, IlluminanceScalesAnImageInfiniteLight) {
+    // An upper hemisphere of radiance 1 sends E = π to a surface facing up:
+    // "illuminance" 2π makes it radiance 2 (to the map's sampling error),
+    // times "scale" 3, as pbrt multiplies both.
+    const fs::path dir = test::scratchDir("pbrt-illuminance");
+    writeUpperHemisphereMap(dir / "sky.exr", 64);
+    const SceneDesc d = SceneDocument::fromText(
+                            scene("LightSource \"infinite\" \"string filename\" \"sky.exr\" \"float scale\" 3 "
+                                  "\"float illuminance\" 6.2831853\n" +
+                                  kTriangle),
+                            dir / "scene.pbrt")
+                            .parse();
+    const BuiltScene s = buildScene(d, BuildOptions{});
+    EXPECT_NEAR(s.world.escapedRadiance(Vec3(0.3f, 0.2f, 0.9f)).r, 6.0f, 0.03f);
+    // An image dark above the horizon cannot be scaled to any illuminance.
+    writeUpperHemisphereMap(dir / "dark.exr", 64, 0.0f);
+    EXPECT_THAT(errorOf(scene("LightSource \"infinite\" \"string filename\" \"dark.exr\" \"float illuminance\" 1\n" +
+                              kTriangle),
+                        dir / "scene.pbrt"),
+                HasSubstr("the image sends no light to a surface facing up (+z)"));
 }
 
 TEST(PbrtImport, LoopsubdivIsAControlMeshStrahlSubdivides) {
