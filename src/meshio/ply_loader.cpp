@@ -12,6 +12,7 @@
 //     (ply_sequential.h), which names the first bad value's place.
 // Both paths give the same mesh, bit for bit, and the same errors.
 
+#include <charconv>
 #include <zlib.h>
 
 #include <bit>
@@ -162,6 +163,24 @@ bool plyFileHasVertexNormals(const fs::path& file) {
     }
     gzclose(in);
     return normals;
+}
+
+size_t plyFileFaceCount(const fs::path& file) {
+    gzFile in = gzopen(file.string().c_str(), "rb");
+    if (!in) return 0;
+    char line[1024];
+    size_t faces = 0;
+    for (int lines = 0; lines < 1000 && gzgets(in, line, sizeof line); ++lines) {
+        std::string_view text(line);
+        while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.remove_suffix(1);
+        if (text.starts_with("end_header")) break;
+        if (text.starts_with("element face ")) {
+            const std::string_view count = text.substr(13);
+            std::from_chars(count.data(), count.data() + count.size(), faces);
+        }
+    }
+    gzclose(in);
+    return faces;
 }
 
 extern const MeshFormat kPlyFormat{"PLY", kPlyExtensions, &loadPly, &loadPlyFromMemory};

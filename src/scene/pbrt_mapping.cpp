@@ -21,6 +21,7 @@
 #include "strahl/core/error.h"
 #include "strahl/core/motion.h"
 #include "strahl/geometry/bilinear_patches.h"
+#include "strahl/geometry/loop_subdivision.h"
 #include "strahl/meshio/mesh_file.h"
 
 namespace strahl::scene_detail::pbrt {
@@ -937,18 +938,49 @@ private:
             return 2.0 * pi * r * (number(e, "zmax", 1.0) - number(e, "zmin", -1.0));
         }
         if (e.type == "bilinearmesh") return patchArea(shape);
-        if (e.type != "trianglemesh")
-            unsupported(e, "an area light given by power needs a trianglemesh, bilinearmesh, sphere, disk or cylinder");
+        if (e.type == "plymesh") return plyArea(shape);
+        if (e.type != "trianglemesh" && e.type != "loopsubdiv")
+            unsupported(e, "an area light given by power needs a trianglemesh, plymesh, loopsubdiv, bilinearmesh, "
+                           "sphere, disk or cylinder");
         const Parameter* P = e.params.find("P");
         if (!P) return 0.0;
         const std::vector<uint32_t> indices = pointIndices(e, *P, 3, {0, 1, 2});
+        TriangleMesh mesh;
+        for (uint32_t i = 0; i < P->numbers.size() / 3; ++i) mesh.positions.emplace_back(worldPoint(shape, *P, i));
+        mesh.indices = indices;
+        // loopsubdiv: pbrt makes a light of each triangle of the subdivided
+        // mesh (its refinement is strahl's, loop_subdivision.h).
+        if (e.type == "loopsubdiv") mesh = loopSubdivide(mesh, integer(e, "levels", 3), e.place.text());
+        return commonArea(e, triangleAreas(mesh), "triangles");
+    }
+
+    static std::vector<double> triangleAreas(const TriangleMesh& mesh) {
         std::vector<double> areas;
-        for (size_t i = 0; i + 2 < indices.size(); i += 3) {
-            const glm::dvec3 a = worldPoint(shape, *P, indices[i]), b = worldPoint(shape, *P, indices[i + 1]),
-                             c = worldPoint(shape, *P, indices[i + 2]);
+        areas.reserve(mesh.triangleCount());
+        for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+            const glm::dvec3 a(mesh.positions[mesh.indices[3 * t]]), b(mesh.positions[mesh.indices[3 * t + 1]]),
+                c(mesh.positions[mesh.indices[3 * t + 2]]);
             areas.push_back(0.5 * glm::length(glm::cross(b - a, c - a)));
         }
-        return commonArea(e, areas, "triangles");
+        return areas;
+    }
+
+    // A plymesh's triangle areas in world space: the file is read now. pbrt
+    // makes bilinear patches of a PLY's quads, each a light of the power, so
+    // a file with quads is refused rather than given twice the power.
+    double plyArea(const Shape& shape) const {
+        const Entity& e = shape.entity;
+        const Parameter* f = typed(e, "filename", {"string"});
+        if (!f) return 0.0;
+        const fs::path name = f->strings.at(0);
+        const fs::path path = name.is_absolute() ? name : s_.folder / name;
+        LoadedMesh loaded = loadMeshFile(path);
+        if (loaded.mesh.triangleCount() != plyFileFaceCount(path))
+            unsupported(e, "an area light given by power on a plymesh with quads is not supported (pbrt makes each "
+                           "quad a bilinear patch with that power); give L instead");
+        TriangleMesh& mesh = loaded.mesh;
+        for (Vec3& p : mesh.positions) p = Vec3(transformPoint(shape.toWorld, glm::dvec3(p)));
+        return commonArea(e, triangleAreas(mesh), "triangles");
     }
 
     // The world-space area of a bilinear mesh's patches: the integral of

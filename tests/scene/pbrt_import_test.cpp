@@ -392,6 +392,36 @@ TEST(PbrtImport, AnAreaLightsPowerIsEveryTrianglesAsInPbrt) {
     EXPECT_NEAR(patch["materials"][0]["emission"].get<double>(), 3.0 / M_PI, 1e-5);
 }
 
+TEST(PbrtImport, PowerOnPlymeshAndLoopsubdivLights) {
+    // A PLY of two triangles of area 1/2 each (a unit square cut in two),
+    // scaled by 2: each triangle has area 2 in the world, so power 4 pi gives
+    // radiance 4 pi / (pi x 2) = 2, as pbrt lights each triangle.
+    const fs::path dir = test::scratchDir("pbrt-power-ply");
+    const std::string header = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                               "property float z\nelement face ";
+    test::writeFile(dir / "tris.ply", header + "2\nproperty list uchar int vertex_indices\nend_header\n"
+                                               "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
+    test::writeFile(dir / "quad.ply", header + "1\nproperty list uchar int vertex_indices\nend_header\n"
+                                               "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
+    const auto light = [](const std::string& shape) {
+        return scene("AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [1 1 1] \"float power\" " +
+                     std::to_string(4.0 * M_PI) + "\nScale 2 2 2\n" + shape + "AttributeEnd\n");
+    };
+    const json doc = document(light("Shape \"plymesh\" \"string filename\" \"tris.ply\"\n"), dir / "scene.pbrt");
+    EXPECT_NEAR(doc["materials"][0]["emission"].get<double>(), 2.0, 1e-5);
+    // pbrt makes a PLY's quad one bilinear patch with that power, strahl two
+    // triangles: refused rather than given twice the light.
+    EXPECT_THAT(errorOf(light("Shape \"plymesh\" \"string filename\" \"quad.ply\"\n"), dir / "scene.pbrt"),
+                HasSubstr("power on a plymesh with quads is not supported"));
+    // loopsubdiv: the subdivided triangles are the lights; an octahedron's
+    // differ in area after one level, which pbrt would light unevenly.
+    const std::string octahedron =
+        "Shape \"loopsubdiv\" \"integer levels\" 1 \"point3 P\" [1 0 0 -1 0 0 0 1 0 0 -1 0 0 0 1 0 0 -1] "
+        "\"integer indices\" [0 2 4 2 1 4 1 3 4 3 0 4 2 0 5 1 2 5 3 1 5 0 3 5]\n";
+    EXPECT_THAT(errorOf(light(octahedron), dir / "scene.pbrt"),
+                HasSubstr("power on triangles that differ in area is not supported"));
+}
+
 TEST(PbrtImport, CheckerboardsKeepPbrtsParity) {
     // pbrt: tex1 where floor(8u) + floor(8v) is even; strahl counts rows from
     // the top (1 - v), which swaps the parity for an even vscale.

@@ -86,6 +86,11 @@ void reportWarning(const std::string& message);
 // property of its vertex element), from its header alone; false for a file
 // that cannot be read or is no PLY (loading it reports that).
 bool plyFileHasVertexNormals(const std::filesystem::path& file);
+// The face count a PLY file (or a .ply.gz) declares ("element face N"), from
+// its header alone; 0 for a file that cannot be read, is no PLY or has none.
+// Compared with a loaded mesh's triangle count, it says whether every face
+// was a triangle.
+size_t plyFileFaceCount(const std::filesystem::path& file);
 
 // Dispatches on the extension (.obj, .ply, .gltf, .glb; case-insensitive).
 LoadedMesh loadMeshFile(const std::filesystem::path& file);
