@@ -301,7 +301,7 @@ Level refine(const Level& level, SubdivisionBoundary mode, bool firstLevel, cons
     // point) are smooth.
     for (Edge& e : next.edges) {
         if (!(e.a < nv && e.b >= nv && e.b < nv + ne)) continue;
-        const uint32_t parent = e.b - nv;
+        const auto parent = uint32_t(e.b - nv);
         const float s = level.edges[parent].sharpness;
         e.sharpness = childSharpness(s);
         const VertexRule& rule = rules[e.a];

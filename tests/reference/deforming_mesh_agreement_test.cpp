@@ -145,7 +145,9 @@ TEST(DeformingMeshAgreement, PacketLanesCarryTheirOwnTimes) {
             const Hit single = embree->intersect(rays[first + size_t(lane)]);
             const Hit packed = packet.hit(lane);
             ASSERT_EQ(packed.valid(), single.valid());
-            if (single.valid()) EXPECT_NEAR(packed.t, single.t, 1e-6f * single.t);
+            if (single.valid()) {
+                EXPECT_NEAR(packed.t, single.t, 1e-6f * single.t);
+            }
         }
     }
 }

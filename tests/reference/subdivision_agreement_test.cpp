@@ -195,7 +195,7 @@ TEST(SubdivisionAgreement, InstancesAndPackets) {
     // 16-wide packets find what single rays find.
     for (size_t first = 0; first + 16 <= rays.size(); first += 16) {
         RayHitPacket16 packet;
-        int valid[16];
+        alignas(64) int valid[16];  // Embree reads the mask with aligned loads
         for (int i = 0; i < 16; ++i) {
             packet.setRay(i, rays[first + i]);
             valid[i] = -1;
