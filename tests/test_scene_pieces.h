@@ -10,6 +10,7 @@
 
 #include "strahl/core/ray.h"
 #include "strahl/core/rng.h"
+#include "strahl/geometry/catmull_clark.h"
 #include "strahl/geometry/triangle_mesh.h"
 
 namespace strahl::test {
@@ -22,6 +23,16 @@ inline TriangleMesh unitQuad(float zPlane) {
     m.indices = {0, 1, 2, 0, 2, 3};
     m.reservePadding();
     return m;
+}
+
+// The cube [-1, 1]³ as a subdivision cage of six quads, counter-clockwise
+// seen from outside; vertex i is at (±1, ±1, ±1) by the bits of i (x, y, z).
+inline SubdivisionCage cubeCage() {
+    SubdivisionCage c;
+    for (int i = 0; i < 8; ++i) c.positions.emplace_back(i & 1 ? 1.0 : -1.0, i & 2 ? 1.0 : -1.0, i & 4 ? 1.0 : -1.0);
+    c.faceSizes.assign(6, 4);
+    c.indices = {0, 2, 3, 1, 4, 5, 7, 6, 0, 1, 5, 4, 2, 6, 7, 3, 0, 4, 6, 2, 1, 3, 7, 5};
+    return c;
 }
 
 // A subdivided icosahedron projected onto a sphere: 20 * 4^level triangles,

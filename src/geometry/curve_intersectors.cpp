@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "curve_math.h"
+#include "double_triangle.h"
 
 namespace strahl::curve {
 
@@ -282,21 +283,10 @@ bool intersectRoundLinear(const DRay& ray, const DVec4& p0, const DVec4& p1, Ref
 
 namespace {
 
-// Möller–Trumbore for either facing; (b1, b2) are the weights of v1 and v2.
+// Möller–Trumbore (double_triangle.h) on the ray's origin and direction.
 bool rayTriangle(const DRay& ray, const DVec3& v0, const DVec3& v1, const DVec3& v2, double& t, double& b1,
                  double& b2) {
-    const DVec3 e1 = v1 - v0, e2 = v2 - v0;
-    const DVec3 pv = glm::cross(ray.dir, e2);
-    const double det = glm::dot(e1, pv);
-    if (!(std::abs(det) > 0.0)) return false;
-    const DVec3 tv = ray.origin - v0;
-    b1 = glm::dot(tv, pv) / det;
-    if (b1 < 0.0 || b1 > 1.0) return false;
-    const DVec3 qv = glm::cross(tv, e1);
-    b2 = glm::dot(ray.dir, qv) / det;
-    if (b2 < 0.0 || b1 + b2 > 1.0) return false;
-    t = glm::dot(e2, qv) / det;
-    return true;
+    return geometry_detail::rayTriangle(ray.origin, ray.dir, v0, v1, v2, t, b1, b2);
 }
 
 // Embree ignores flat-curve hits nearer to the ray's origin than twice the

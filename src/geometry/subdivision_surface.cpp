@@ -17,6 +17,8 @@
 
 #include <glm/glm.hpp>
 
+#include "double_box.h"
+#include "double_triangle.h"
 #include "strahl/core/error.h"
 
 namespace strahl {
@@ -45,38 +47,6 @@ SubFacePoint decode(uint32_t faceSize, double u, double v) {
     p.s = std::clamp(u - 2.0 * double(p.sub % 4) - 0.5, 0.0, 1.0);
     p.t = std::clamp(v - 2.0 * double(p.sub / 4) - 0.5, 0.0, 1.0);
     return p;
-}
-
-// Möller–Trumbore in double: t and the barycentrics of b and c.
-bool intersectTriangle(const DVec3& o, const DVec3& d, const DVec3& a, const DVec3& b, const DVec3& c, double& t,
-                       double& b1, double& b2) {
-    const DVec3 e1 = b - a, e2 = c - a;
-    const DVec3 pv = glm::cross(d, e2);
-    const double det = glm::dot(e1, pv);
-    if (det == 0.0 || !std::isfinite(det)) return false;
-    const double inv = 1.0 / det;
-    const DVec3 tv = o - a;
-    b1 = glm::dot(tv, pv) * inv;
-    if (b1 < 0.0 || b1 > 1.0) return false;
-    const DVec3 qv = glm::cross(tv, e1);
-    b2 = glm::dot(d, qv) * inv;
-    if (b2 < 0.0 || b1 + b2 > 1.0) return false;
-    t = glm::dot(e2, qv) * inv;
-    return true;
-}
-
-bool slabsHit(const Bounds3& b, const Ray& ray) {
-    float t0 = ray.tnear, t1 = ray.tfar;
-    for (int k = 0; k < 3; ++k) {
-        const float inv = 1.0f / ray.dir[k];
-        float lo = (b.min[k] - ray.origin[k]) * inv, hi = (b.max[k] - ray.origin[k]) * inv;
-        if (lo > hi) std::swap(lo, hi);
-        hi *= 1.0f + 2.0f * gammaBound(3);  // pbrt's robust slab test
-        t0 = lo > t0 ? lo : t0;
-        t1 = hi < t1 ? hi : t1;
-        if (t0 > t1) return false;
-    }
-    return true;
 }
 
 Vec3 down(const DVec3& p) { return Vec3(p); }
@@ -198,8 +168,10 @@ bool SubdivisionSurface::locate(uint32_t face, double u, double v, uint32_t& qua
 Bounds3 SubdivisionSurface::primitiveBounds(uint32_t face) const { return faceBounds_[face]; }
 
 bool SubdivisionSurface::intersect(const Ray& ray, uint32_t face, Hit& hit) const noexcept {
-    if (!slabsHit(faceBounds_[face], ray)) return false;
     const DVec3 o(ray.origin), d(ray.dir);
+    double t0 = ray.tnear, t1 = ray.tfar;
+    const Bounds3& box = faceBounds_[face];
+    if (!geometry_detail::clipToBox(o, d, DVec3(box.min), DVec3(box.max), t0, t1)) return false;
     double best = double(ray.tfar);
     bool found = false;
     for (uint32_t q = faceFirstQuad_[face]; q < faceFirstQuad_[face + 1]; ++q) {
@@ -212,7 +184,7 @@ bool SubdivisionSurface::intersect(const Ray& ray, uint32_t face, Hit& hit) cons
             const int ia = tri == 0 ? c00 : (c00 + 1) % 4, ib = tri == 0 ? (c00 + 1) % 4 : (c00 + 2) % 4,
                       ic = (c00 + 3) % 4;
             double t, b1, b2;
-            if (!intersectTriangle(o, d, points_[v[ia]], points_[v[ib]], points_[v[ic]], t, b1, b2)) continue;
+            if (!geometry_detail::rayTriangle(o, d, points_[v[ia]], points_[v[ib]], points_[v[ic]], t, b1, b2)) continue;
             if (!(t > double(ray.tnear) && t < best)) continue;
             best = t;
             found = true;

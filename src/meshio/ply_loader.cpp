@@ -147,41 +147,40 @@ LoadedMesh loadGzipPly(const fs::path& file) {
 constexpr std::string_view kGzipPlyExtensions[] = {".ply.gz"};
 }  // namespace
 
-bool plyFileHasVertexNormals(const fs::path& file) {
+// What the two header queries below need, from one pass over the header
+// lines (of a plain or gzipped file): whether the vertex element has "nx",
+// and the face element's count. All false and 0 for a file that cannot be read.
+struct PlyHeaderFacts {
+    bool vertexNormals = false;
+    size_t faces = 0;
+};
+
+PlyHeaderFacts scanPlyHeader(const fs::path& file) {
+    PlyHeaderFacts facts;
     // gzread reads plain files as they are and .gz files inflated.
     gzFile in = gzopen(file.string().c_str(), "rb");
-    if (!in) return false;
+    if (!in) return facts;
     char line[1024];
-    bool inVertex = false, normals = false;
+    bool inVertex = false;
     // A header of more than 1000 lines is no PLY header strahl reads.
     for (int lines = 0; lines < 1000 && gzgets(in, line, sizeof line); ++lines) {
         std::string_view text(line);
         while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.remove_suffix(1);
         if (text.starts_with("end_header")) break;
         if (text.starts_with("element ")) inVertex = text.starts_with("element vertex ");
-        if (inVertex && text.starts_with("property ") && text.ends_with(" nx")) normals = true;
-    }
-    gzclose(in);
-    return normals;
-}
-
-size_t plyFileFaceCount(const fs::path& file) {
-    gzFile in = gzopen(file.string().c_str(), "rb");
-    if (!in) return 0;
-    char line[1024];
-    size_t faces = 0;
-    for (int lines = 0; lines < 1000 && gzgets(in, line, sizeof line); ++lines) {
-        std::string_view text(line);
-        while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.remove_suffix(1);
-        if (text.starts_with("end_header")) break;
+        if (inVertex && text.starts_with("property ") && text.ends_with(" nx")) facts.vertexNormals = true;
         if (text.starts_with("element face ")) {
             const std::string_view count = text.substr(13);
-            std::from_chars(count.data(), count.data() + count.size(), faces);
+            std::from_chars(count.data(), count.data() + count.size(), facts.faces);
         }
     }
     gzclose(in);
-    return faces;
+    return facts;
 }
+
+bool plyFileHasVertexNormals(const fs::path& file) { return scanPlyHeader(file).vertexNormals; }
+
+size_t plyFileFaceCount(const fs::path& file) { return scanPlyHeader(file).faces; }
 
 extern const MeshFormat kPlyFormat{"PLY", kPlyExtensions, &loadPly, &loadPlyFromMemory};
 extern const MeshFormat kGzipPlyFormat{"gzip-compressed PLY", kGzipPlyExtensions, &loadGzipPly,

@@ -28,10 +28,20 @@ namespace strahl::scene_detail::pbrt {
 
 namespace {
 
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+// x mirrored: pbrt's left-handed camera seen in strahl's right-handed world.
+const glm::dmat4 kMirrorX(glm::dvec4(-1, 0, 0, 0), glm::dvec4(0, 1, 0, 0), glm::dvec4(0, 0, 1, 0),
+                          glm::dvec4(0, 0, 0, 1));
+
+// Luminance of linear sRGB (Rec. 709 primaries, the Y row of RGB -> XYZ).
+double luminance(glm::dvec3 c) { return 0.2126729 * c.r + 0.7151522 * c.g + 0.0721750 * c.b; }
+
 // The illuminance that pbrt-v4's equal-area square image `file` sends to a
 // surface facing +z in the light's frame: Σ Y(pixel) cos θ · 4π / pixels over
-// the pixels whose direction has z > 0 (cos θ = z), Y the Rec. 709
-// luminance. In the octahedral layout z depends only on the pixel centre's
+// the pixels whose direction has z > 0 (cos θ = z), Y the luminance
+// above. In the octahedral layout z depends only on the pixel centre's
 // distance from the centre, |2u − 1| + |2v − 1| = r: z = 1 − r² inside the
 // central diamond (equalAreaSquareToSphere), so the image's orientation does
 // not matter.
@@ -44,23 +54,11 @@ double upperHemisphereIlluminance(const std::filesystem::path& file) {
                                                         (float(y) + 0.5f) / float(image.height)));
             if (w.z <= 0.0f) continue;
             const float* p = &image.pixels[(size_t(y) * size_t(image.width) + size_t(x)) * size_t(image.channels)];
-            const double luminance =
-                image.channels == 1 ? double(p[0]) : 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
-            sum += luminance * double(w.z);
+            const double Y = image.channels == 1 ? double(p[0]) : luminance(glm::dvec3(p[0], p[1], p[2]));
+            sum += Y * double(w.z);
         }
     return sum * 4.0 * glm::pi<double>() / (double(image.width) * double(image.height));
 }
-
-
-namespace fs = std::filesystem;
-using json = nlohmann::json;
-
-// x mirrored: pbrt's left-handed camera seen in strahl's right-handed world.
-const glm::dmat4 kMirrorX(glm::dvec4(-1, 0, 0, 0), glm::dvec4(0, 1, 0, 0), glm::dvec4(0, 0, 1, 0),
-                          glm::dvec4(0, 0, 0, 1));
-
-// Luminance of linear sRGB (Rec. 709 primaries, the Y row of RGB -> XYZ).
-double luminance(glm::dvec3 c) { return 0.2126729 * c.r + 0.7151522 * c.g + 0.0721750 * c.b; }
 
 json vec3(glm::dvec3 v) { return json::array({v.x, v.y, v.z}); }
 json color(glm::dvec3 c) {

@@ -8,7 +8,7 @@
 
 #include <glm/glm.hpp>
 
-#include "image_reader.h"
+#include "height_image.h"
 #include "strahl/meshio/polygon_file.h"
 
 namespace strahl::scene_detail {
@@ -23,9 +23,6 @@ float parseSharpness(const JsonValue& v) {
     }
     return v.numberIn(0.0f, std::numeric_limits<float>::max());
 }
-
-// The largest images a displacement may read (16k × 16k).
-constexpr size_t kMaxDisplacementPixels = size_t(1) << 28;
 
 DisplacementDesc parseDisplacement(const JsonValue& v, const std::filesystem::path& folder) {
     v.requireKeys({"formula", "parameters", "image", "scale", "offset"});
@@ -59,16 +56,15 @@ DisplacementDesc parseDisplacement(const JsonValue& v, const std::filesystem::pa
     return d;
 }
 
-// Bilinear lookup with repeat wrapping; v = 0 is the image's bottom row. The
-// value is the first channel, or the mean of the first three.
-double sampleImage(const FloatImage& image, double u, double v) {
+// Bilinear lookup with repeat wrapping; v = 0 is the image's bottom row
+// (row 0 of a HeightImage is its top).
+double sampleImage(const HeightImage& image, double u, double v) {
     const auto value = [&](int x, int y) {
-        x = ((x % image.width) + image.width) % image.width;
-        y = ((y % image.height) + image.height) % image.height;
-        const float* p = &image.pixels[(size_t(image.height - 1 - y) * image.width + x) * image.channels];
-        return image.channels == 1 ? double(p[0]) : (double(p[0]) + p[1] + p[2]) / 3.0;
+        x = ((x % image.columns) + image.columns) % image.columns;
+        y = ((y % image.rows) + image.rows) % image.rows;
+        return double(image.heights[size_t(image.rows - 1 - y) * size_t(image.columns) + size_t(x)]);
     };
-    const double x = u * image.width - 0.5, y = v * image.height - 0.5;
+    const double x = u * image.columns - 0.5, y = v * image.rows - 0.5;
     const double fx = std::floor(x), fy = std::floor(y);
     const int x0 = int(fx), y0 = int(fy);
     const double tx = x - fx, ty = y - fy;
@@ -230,8 +226,9 @@ std::shared_ptr<const SubdivisionSurface> makeSubdivisionSurface(const ShapeDesc
                 return meanScale * (scale * formula->evaluate<double>(vars) + offset);
             };
         } else {
-            auto image = std::make_shared<const FloatImage>(readFloatImage(disp.image, "displacement image",
-                                                                           kMaxDisplacementPixels));
+            // Read as a height field's image is (height_image.h): one
+            // channel, or the luminance of three.
+            auto image = std::make_shared<const HeightImage>(loadHeightImage(disp.image));
             const double scale = disp.scale, offset = disp.offset;
             desc.displacement = [image, meanScale, scale, offset](const DVec3&, const DVec3&, const DVec2& uv) {
                 return meanScale * (scale * sampleImage(*image, uv.x, uv.y) + offset);

@@ -12,17 +12,10 @@
 
 #include "strahl/core/error.h"
 #include "strahl/geometry/subdivision_surface.h"
+#include "test_scene_pieces.h"
 
 namespace strahl {
 namespace {
-
-SubdivisionCage cubeCage() {
-    SubdivisionCage c;
-    for (int i = 0; i < 8; ++i) c.positions.emplace_back(i & 1 ? 1.0 : -1.0, i & 2 ? 1.0 : -1.0, i & 4 ? 1.0 : -1.0);
-    c.faceSizes.assign(6, 4);
-    c.indices = {0, 2, 3, 1,  4, 5, 7, 6,  0, 1, 5, 4,  2, 6, 7, 3,  0, 4, 6, 2,  1, 3, 7, 5};
-    return c;
-}
 
 // An n × n grid of quads over [0, n]², vertex (i, j) at index j (n + 1) + i,
 // with heights z(i, j).
@@ -64,7 +57,7 @@ TEST(CatmullClark, CubeFaceCentreReachesItsLimit) {
     // diagonal ones the cube's corners moved to (5/9, 5/9, 5/9). The limit
     // rule (16 F + 4 Σ e + Σ d) / 36 gives z = (16 + 12 + 20/9) / 36 = 68/81.
     for (int levels : {1, 3, 6}) {
-        const SubdivisionSurface s = surfaceOf(cubeCage(), levels);
+        const SubdivisionSurface s = surfaceOf(test::cubeCage(), levels);
         const DVec3 p = s.pointAt(1, 0.5f, 0.5f);
         EXPECT_NEAR(p.z, 68.0 / 81.0, 1e-12) << levels;
         EXPECT_NEAR(p.x, 0.0, 1e-12);
@@ -150,9 +143,9 @@ TEST(CatmullClark, UvsAreSubdividedLikePositions) {
 TEST(CatmullClark, NormalsKinkOnlyAtCreases) {
     // A smooth closed surface: one normal group per refined vertex. A crease
     // loop splits its vertices' corners into two groups each.
-    const RefinedSurface smooth = refineCatmullClark(cubeCage(), 2, "cube");
+    const RefinedSurface smooth = refineCatmullClark(test::cubeCage(), 2, "cube");
     EXPECT_EQ(smooth.groupCount, smooth.positions.size());
-    SubdivisionCage creased = cubeCage();
+    SubdivisionCage creased = test::cubeCage();
     creased.creaseEdges = {0, 2, 2, 3, 3, 1, 1, 0};
     creased.creaseWeights = {INFINITY, INFINITY, INFINITY, INFINITY};
     const RefinedSurface kinked = refineCatmullClark(creased, 2, "cube");
@@ -165,7 +158,7 @@ TEST(CatmullClark, NormalsKinkOnlyAtCreases) {
 TEST(CatmullClark, DisplacementMovesAlongTheNormal) {
     SubdivisionDesc desc;
     desc.name = "cube";
-    desc.cage = cubeCage();
+    desc.cage = test::cubeCage();
     desc.levels = 3;
     desc.displacement = [](const DVec3&, const DVec3&, const DVec2&) { return 0.25; };
     desc.displacementText = "0.25";
@@ -176,7 +169,7 @@ TEST(CatmullClark, DisplacementMovesAlongTheNormal) {
     EXPECT_NEAR(s.displacementAt(1, 0.5f, 0.5f).z, 0.25, 1e-12);
     SubdivisionDesc bad;
     bad.name = "cube";
-    bad.cage = cubeCage();
+    bad.cage = test::cubeCage();
     bad.displacement = [](const DVec3&, const DVec3&, const DVec2&) { return std::nan(""); };
     EXPECT_THROW(SubdivisionSurface{std::move(bad)}, Error);
 }
@@ -191,47 +184,47 @@ void expectRefused(const SubdivisionCage& cage, const std::string& fragment, int
 }
 
 TEST(CatmullClark, RefusesBadCages) {
-    SubdivisionCage c = cubeCage();
+    SubdivisionCage c = test::cubeCage();
     c.faceSizes[0] = 2;
     c.faceSizes[1] = 6;
     expectRefused(c, "face 0 has 2 vertices (3 to 15)");
-    c = cubeCage();
+    c = test::cubeCage();
     c.indices[5] = 99;
     expectRefused(c, "face 1 uses vertex 99, but there are 8");
-    c = cubeCage();
+    c = test::cubeCage();
     c.indices[1] = c.indices[0];
     expectRefused(c, "face 0 uses vertex 0 twice");
-    c = cubeCage();
+    c = test::cubeCage();
     std::swap(c.indices[0], c.indices[1]);  // face 0 wound the other way
     expectRefused(c, "used twice in the same direction");
-    c = cubeCage();
+    c = test::cubeCage();
     c.faceSizes.push_back(4);  // a copy of face 0, reversed: a third face on its edges
     c.indices.insert(c.indices.end(), {1, 3, 2, 0});
     expectRefused(c, "shared by more than two faces");
-    c = cubeCage();
+    c = test::cubeCage();
     c.creaseEdges = {0, 7};
     c.creaseWeights = {1.0f};
     expectRefused(c, "crease 0 (0-7) is not an edge of the mesh");
     c.creaseEdges = {0, 1};
     c.creaseWeights = {std::nanf("")};
     expectRefused(c, "crease 0 has weight nan");
-    c = cubeCage();
+    c = test::cubeCage();
     c.holes = {6};
     expectRefused(c, "hole 6 is not a face (6 faces)");
     c.holes = {0, 1, 2, 3, 4, 5};
     expectRefused(c, "every face is a hole");
-    c = cubeCage();
+    c = test::cubeCage();
     c.cornerVertices = {8};
     c.cornerWeights = {1.0f};
     expectRefused(c, "corner 0 names vertex 8, but there are 8");
-    c = cubeCage();
+    c = test::cubeCage();
     c.uvs = {{0, 0}};
     expectRefused(c, "1 uvs for 8 positions");
-    c = cubeCage();
+    c = test::cubeCage();
     c.positions[3].y = INFINITY;
     expectRefused(c, "position 3 is not finite");
-    expectRefused(cubeCage(), "0 subdivision levels (1 to 8)", 0);
-    expectRefused(cubeCage(), "9 subdivision levels (1 to 8)", 9);
+    expectRefused(test::cubeCage(), "0 subdivision levels (1 to 8)", 0);
+    expectRefused(test::cubeCage(), "9 subdivision levels (1 to 8)", 9);
 }
 
 TEST(CatmullClark, BoundaryModeNames) {

@@ -15,25 +15,17 @@
 #include "strahl/core/packet.h"
 #include "strahl/core/rng.h"
 #include "strahl/geometry/subdivision_surface.h"
+#include "test_scene_pieces.h"
 #include "strahl/reference/naive_accel.h"
 
 namespace strahl {
 namespace {
 
-// The cube [-1, 1]³ as six quads, counter-clockwise from outside.
-SubdivisionCage cubeCage() {
-    SubdivisionCage c;
-    for (int i = 0; i < 8; ++i) c.positions.emplace_back(i & 1 ? 1.0 : -1.0, i & 2 ? 1.0 : -1.0, i & 4 ? 1.0 : -1.0);
-    c.faceSizes.assign(6, 4);
-    c.indices = {0, 2, 3, 1,  4, 5, 7, 6,  0, 1, 5, 4,  2, 6, 7, 3,  0, 4, 6, 2,  1, 3, 7, 5};
-    return c;
-}
-
 // A cube whose top is a pyramid of four triangles to an apex and whose front
 // face (y = −1) is a pentagon through an extra point: faces of 3, 4 and 5
 // vertices.
 SubdivisionCage mixedCage() {
-    SubdivisionCage c = cubeCage();
+    SubdivisionCage c = test::cubeCage();
     c.positions.emplace_back(0.0, 0.0, 1.6);   // 8: the apex
     c.positions.emplace_back(0.0, -1.0, 0.3);  // 9: on the front face
     c.faceSizes = {4, 3, 3, 3, 3, 5, 4, 4, 4};
@@ -123,7 +115,7 @@ void expectHitForHit(const Agreement& a, double tTolerance = 1e-4, double paramT
 TEST(SubdivisionAgreement, QuadCageHitForHit) {
     for (int levels : {1, 3, 5}) {
         SCOPED_TRACE(levels);
-        expectHitForHit(agreementFor(cubeCage(), levels));
+        expectHitForHit(agreementFor(test::cubeCage(), levels));
     }
 }
 
@@ -137,11 +129,11 @@ TEST(SubdivisionAgreement, TrianglesAndPentagonsInEmbreesEncoding) {
 }
 
 TEST(SubdivisionAgreement, SemiSharpCreasesAndCorners) {
-    SubdivisionCage semi = cubeCage();
+    SubdivisionCage semi = test::cubeCage();
     semi.creaseEdges = {0, 2, 2, 3, 3, 1, 1, 0};
     semi.creaseWeights = {1.5f, 1.5f, 0.5f, 2.0f};
     expectHitForHit(agreementFor(semi, 4));
-    SubdivisionCage corner = cubeCage();
+    SubdivisionCage corner = test::cubeCage();
     corner.cornerVertices = {7, 0};
     corner.cornerWeights = {INFINITY, INFINITY};
     expectHitForHit(agreementFor(corner, 4));
@@ -152,7 +144,7 @@ TEST(SubdivisionAgreement, InfinitelySharpCreasesConvergeToTheReference) {
     // (its adaptive evaluation stops at a depth tied to the tessellation),
     // so its grid points there differ from the exact limit — by less at
     // every level (measured t: 6e-3, 2e-3, 8e-4 at levels 4, 5, 6).
-    SubdivisionCage creased = cubeCage();
+    SubdivisionCage creased = test::cubeCage();
     creased.creaseEdges = {0, 2, 2, 3, 3, 1, 1, 0};
     creased.creaseWeights = {INFINITY, INFINITY, INFINITY, INFINITY};
     const Agreement coarse = agreementFor(creased, 4), fine = agreementFor(creased, 6);
@@ -163,7 +155,7 @@ TEST(SubdivisionAgreement, InfinitelySharpCreasesConvergeToTheReference) {
 }
 
 TEST(SubdivisionAgreement, HolesInEveryBoundaryMode) {
-    SubdivisionCage holed = cubeCage();
+    SubdivisionCage holed = test::cubeCage();
     holed.holes = {1};
     for (SubdivisionBoundary mode : {SubdivisionBoundary::Smooth, SubdivisionBoundary::PinCorners,
                                      SubdivisionBoundary::PinBoundary, SubdivisionBoundary::PinAll}) {
@@ -175,7 +167,7 @@ TEST(SubdivisionAgreement, HolesInEveryBoundaryMode) {
 
 TEST(SubdivisionAgreement, DisplacedSurfaces) {
     // Embree adds the reference's offset at each of its grid points.
-    expectHitForHit(agreementFor(cubeCage(), 4, waves));
+    expectHitForHit(agreementFor(test::cubeCage(), 4, waves));
     // Non-quad faces: Embree's sub-quad grids are offset the same way; t
     // within 1e-3 (measured 5e-4).
     expectHitForHit(agreementFor(mixedCage(), 4, waves), 1e-3, 2e-2);
@@ -216,7 +208,7 @@ TEST(SubdivisionAgreement, InstancesAndPackets) {
 TEST(SubdivisionAgreement, EmbreeHitsTheAnalyticLimitPoint) {
     // The limit of the cube's face centre (catmull_clark_test.cpp derives
     // 68/81): a ray down the z axis meets it on both tracers.
-    const SubdivisionSurface surface = makeSurface(cubeCage(), 3);
+    const SubdivisionSurface surface = makeSurface(test::cubeCage(), 3);
     const std::vector<ShapeRef> shapes = {ShapeRef{nullptr, &surface}};
     Ray down;
     down.origin = Vec3(0.0f, 0.0f, 5.0f);

@@ -30,18 +30,6 @@ SceneDesc sceneWith(const std::string& shape) {
                           "curves.json");
 }
 
-// Fraction of pixels whose beauty differs by more than 2 % of the brightest.
-double differingPixels(const std::vector<float>& a, const std::vector<float>& b) {
-    float peak = 0.0f;
-    for (float v : a) peak = std::max(peak, v);
-    int differing = 0;
-    for (size_t i = 0; i < a.size(); i += 3) {
-        const float d = std::abs(a[i] - b[i]) + std::abs(a[i + 1] - b[i + 1]) + std::abs(a[i + 2] - b[i + 2]);
-        if (d > 0.02f * peak) ++differing;
-    }
-    return double(differing) / double(a.size() / 3);
-}
-
 TEST(CurvesRender, AStraightRoundCurveLooksLikeACylinder) {
     const std::vector<float> curve = test::renderBeauty(sceneWith(R"(
         {"type": "curves", "basis": "bezier", "radius": 0.4,
@@ -52,7 +40,7 @@ TEST(CurvesRender, AStraightRoundCurveLooksLikeACylinder) {
     ASSERT_EQ(curve.size(), cylinder.size());
     // Only the silhouette and the open ends' rims may differ (Embree's curve
     // is float Newton on a sweep, the cylinder double Newton on a patch).
-    EXPECT_LT(differingPixels(curve, cylinder), 0.01);
+    EXPECT_LT(test::differingPixels(curve, cylinder), 0.01);
     EXPECT_GT(test::channelSum(curve), 0.0);
 }
 
@@ -66,7 +54,7 @@ TEST(CurvesRender, AStraightOrientedRibbonLooksLikeARectangle) {
         {"type": "mesh", "positions": [[-0.4, 0, -1], [0.4, 0, -1], [0.4, 0, 1], [-0.4, 0, 1]],
          "indices": [0, 1, 2, 0, 2, 3]})"));
     ASSERT_EQ(ribbon.size(), rectangle.size());
-    EXPECT_LT(differingPixels(ribbon, rectangle), 0.005);
+    EXPECT_LT(test::differingPixels(ribbon, rectangle), 0.005);
     EXPECT_GT(test::channelSum(ribbon), 0.0);
 }
 
@@ -86,7 +74,7 @@ TEST(CurvesRender, TheNaiveTracerRendersTheSameCurves) {
         const SceneDesc desc = sceneWith(shape);
         const std::vector<float> embree = test::renderBeauty(desc);
         const std::vector<float> naive = test::renderFilm(desc, {.accel = AccelKind::Naive}).resolveBeauty();
-        EXPECT_LT(differingPixels(embree, naive), 0.005) << profile;
+        EXPECT_LT(test::differingPixels(embree, naive), 0.005) << profile;
     }
 }
 

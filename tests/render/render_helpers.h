@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -65,6 +66,20 @@ inline Film renderFilm(const SceneDesc& desc, const RenderSetup& setup = {}) {
 // The resolved beauty (RGB per pixel) of renderFilm(desc).
 inline std::vector<float> renderBeauty(const SceneDesc& desc, const RenderSetup& setup = {}) {
     return renderFilm(desc, setup).resolveBeauty();
+}
+
+// Fraction of pixels whose beauty (RGB) differs by more than 2 % of the
+// brightest value of `a`: where two tracers of one surface may disagree
+// (silhouettes, rims) is a few pixels, a wrong surface many.
+inline double differingPixels(const std::vector<float>& a, const std::vector<float>& b) {
+    float peak = 0.0f;
+    for (float v : a) peak = std::max(peak, v);
+    int differing = 0;
+    for (size_t i = 0; i < a.size(); i += 3) {
+        const float d = std::abs(a[i] - b[i]) + std::abs(a[i + 1] - b[i + 1]) + std::abs(a[i + 2] - b[i + 2]);
+        if (d > 0.02f * peak) ++differing;
+    }
+    return double(differing) / double(a.size() / 3);
 }
 
 // The sum of every channel of an image.

@@ -31,18 +31,6 @@ SceneDesc sceneWith(const std::string& shape) {
     return parseSceneText(text, "subdivision.json");
 }
 
-// Fraction of pixels whose beauty differs by more than 2 % of the brightest.
-double differingPixels(const std::vector<float>& a, const std::vector<float>& b) {
-    float peak = 0.0f;
-    for (float v : a) peak = std::max(peak, v);
-    int differing = 0;
-    for (size_t i = 0; i < a.size(); i += 3) {
-        const float d = std::abs(a[i] - b[i]) + std::abs(a[i + 1] - b[i + 1]) + std::abs(a[i + 2] - b[i + 2]);
-        if (d > 0.02f * peak) ++differing;
-    }
-    return double(differing) / double(a.size() / 3);
-}
-
 // A cube with a pyramid top and a pentagon front, a crease loop round its
 // bottom and a wavy displacement.
 constexpr const char* kMixedShape = R"json({"type": "subdivision", "levels": 4,
@@ -58,7 +46,7 @@ TEST(SubdivisionRender, TheNaiveTracerRendersTheSameSurface) {
     EXPECT_GT(test::channelSum(embree), 0.0);
     // Only pixels on the crease's silhouette may differ (Embree's points
     // next to an infinitely sharp crease approximate the limit).
-    EXPECT_LT(differingPixels(embree, naive), 0.01);
+    EXPECT_LT(test::differingPixels(embree, naive), 0.01);
 }
 
 TEST(SubdivisionRender, APinnedCageIsItsPolygons) {
@@ -72,7 +60,7 @@ TEST(SubdivisionRender, APinnedCageIsItsPolygons) {
     // Flat faces shade alike; the shading normals differ only within a
     // refined cell of the box's edges (smoothed across them by the pinned
     // surface), a few pixels.
-    EXPECT_LT(differingPixels(pinned, box), 0.03);
+    EXPECT_LT(test::differingPixels(pinned, box), 0.03);
 }
 
 TEST(SubdivisionRender, ImagesDoNotDependOnTheThreadCount) {
