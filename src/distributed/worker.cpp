@@ -5,10 +5,16 @@
 // condition variable until there is something to send or the queue runs low,
 // then ships the results and, if fewer than T tiles wait, asks for enough to
 // hold 2T — so a round trip to the scheduler hides behind T tiles of work.
+// The answer may be held back (adaptive sampling: until the scheduler's round
+// ends, which needs this worker's finished tiles), so the main thread never
+// blocks on it: while a request is open it polls for the answer between
+// shipping results, sleeping 20 us to 250 us as the scheduler does.
 //
 // Each tile is rendered by strahl::renderImage on a Film whose crop is the
 // tile, with one thread: the very code path of a local render, so its pixels
 // are the local render's bits (determinism is per pixel and sample index).
+// A tile of a later adaptive round starts from the pixel state the scheduler
+// sent, as a render resumed from a checkpoint does.
 
 #include "worker.h"
 
@@ -47,9 +53,10 @@ public:
 
 private:
     void renderLoop();
-    FinishedTile renderTile(int index) const;
+    FinishedTile renderTile(const TileWork& work) const;
     void send(const std::deque<FinishedTile>& batch);
     void requestTiles(int count);
+    void takeAssignment(const Message& reply);
 
     // Under mutex_:
     bool wantsTiles() const { return !noMoreTiles_ && static_cast<int>(queue_.size()) < threads_; }
@@ -67,27 +74,38 @@ private:
 
     std::mutex mutex_;
     std::condition_variable changed_;
-    std::deque<int> queue_;              // tiles assigned, not started
+    std::deque<TileWork> queue_;         // tiles assigned, not started
     std::deque<FinishedTile> finished_;  // rendered, not sent
     int busy_ = 0;                       // tiles being rendered
     bool noMoreTiles_ = false;           // the scheduler has none left
+    bool requestOpen_ = false;           // asked for tiles, no answer yet (main thread only)
     bool stop_ = false;                  // a thread failed: everyone stops
     std::exception_ptr error_;
 };
 
-FinishedTile Worker::renderTile(int index) const {
-    const PixelRect& rect = tiles_[static_cast<size_t>(index)];
+FinishedTile Worker::renderTile(const TileWork& work) const {
+    const PixelRect& rect = tiles_[static_cast<size_t>(work.tile)];
     Film tile(film_.fullWidth(), film_.fullHeight(), rect, film_.aovs());
     if (film_.keepsHalves()) tile.keepHalves(film_.halvesFirstSample());  // --denoise
+    if (film_.tracksConvergence()) tile.trackConvergence();              // adaptive sampling
+    if (!work.state.empty())
+        tile.unpackPixels(rect, work.state, "tile " + std::to_string(work.tile) + " from rank 0");
+    if (work.passEnd > options_.spp)
+        fail("the scheduler asked for ", work.passEnd, " samples per pixel, more than the ",
+             options_.spp, " of this render");
     RenderOptions options;
     options.threads = 1;  // this thread; the worker's parallelism is across tiles
     options.tileSize = options_.tileSize;
-    options.spp = options_.spp;
+    // An adaptive round ends at a decision pass, which the scheduler takes
+    // on the whole film: none falls inside [start, passEnd), so renderImage
+    // takes no decision of its own on this tile.
+    options.spp = work.passEnd;
     options.seed = options_.seed;
     options.packets = options_.packets;
     options.filter = options_.filter;
+    options.adaptive = options_.adaptive;
     FinishedTile done;
-    done.tile = index;
+    done.tile = work.tile;
     done.stats = renderImage(world_, camera_, integrator_, tile, options);
     done.pixels = tile.packPixels(rect);
     return done;
@@ -95,19 +113,19 @@ FinishedTile Worker::renderTile(int index) const {
 
 void Worker::renderLoop() {
     for (;;) {
-        int index = 0;
+        TileWork work;
         {
             std::unique_lock lock(mutex_);
             changed_.wait(lock, [&] { return stop_ || !queue_.empty() || noMoreTiles_; });
             if (stop_ || queue_.empty()) return;
-            index = queue_.front();
+            work = std::move(queue_.front());
             queue_.pop_front();
             ++busy_;
         }
         changed_.notify_all();  // the queue shrank: the main thread may ask for more
         try {
             fault_.beforeTile();
-            FinishedTile done = renderTile(index);
+            FinishedTile done = renderTile(work);
             std::lock_guard lock(mutex_);
             finished_.push_back(std::move(done));
             --busy_;
@@ -145,20 +163,19 @@ void Worker::send(const std::deque<FinishedTile>& batch) {
 void Worker::requestTiles(int count) {
     const int32_t wanted = count;
     sendBytes(asBytes(wanted), kSchedulerRank, kRequest);
-    // The scheduler answers every request at once, so this wait is one round trip.
-    const Message reply = receive(kSchedulerRank, kAssign);
-    if (reply.bytes.size() % sizeof(int32_t) != 0)
-        fail("the scheduler sent a malformed tile assignment of ", reply.bytes.size(), " bytes");
-    std::vector<int32_t> assigned(reply.bytes.size() / sizeof(int32_t));
-    std::memcpy(assigned.data(), reply.bytes.data(), reply.bytes.size());
-    for (int32_t index : assigned)
-        if (index < 0 || static_cast<size_t>(index) >= tiles_.size())
-            fail("the scheduler assigned tile ", index, " of an image cut into ", tiles_.size(),
-                 " tiles");
+    requestOpen_ = true;
+}
+
+void Worker::takeAssignment(const Message& reply) {
+    if (reply.source != kSchedulerRank || reply.tag != kAssign)
+        fail("rank ", reply.source, " sent this worker a message with tag ", reply.tag,
+             " (only rank 0 assigns tiles)");
+    std::vector<TileWork> assigned = decodeAssignment(reply.bytes, tiles_.size());
+    requestOpen_ = false;
     {
         std::lock_guard lock(mutex_);
         if (assigned.empty()) noMoreTiles_ = true;
-        queue_.insert(queue_.end(), assigned.begin(), assigned.end());
+        for (TileWork& work : assigned) queue_.push_back(std::move(work));
     }
     changed_.notify_all();
 }
@@ -175,18 +192,35 @@ RenderStats Worker::run(const std::string& fingerprint) {
     for (int i = 0; i < threads_; ++i) threads.emplace_back([this] { renderLoop(); });
 
     std::exception_ptr error;
+    auto pause = std::chrono::microseconds(20);
     try {
         for (;;) {
             std::unique_lock lock(mutex_);
-            changed_.wait(lock, [&] { return stop_ || !finished_.empty() || wantsTiles() || idle(); });
+            const auto ready = [&] {
+                return stop_ || !finished_.empty() || (wantsTiles() && !requestOpen_) || idle();
+            };
+            if (requestOpen_)
+                changed_.wait_for(lock, pause, ready);  // then look for the answer
+            else
+                changed_.wait(lock, ready);
             if (stop_) break;
             if (finished_.empty() && idle()) break;
             std::deque<FinishedTile> ship;
             ship.swap(finished_);
-            const int wanted = wantsTiles() ? 2 * threads_ - static_cast<int>(queue_.size()) : 0;
+            const int wanted = wantsTiles() && !requestOpen_
+                                   ? 2 * threads_ - static_cast<int>(queue_.size())
+                                   : 0;
             lock.unlock();
             if (!ship.empty()) send(ship);
             if (wanted > 0) requestTiles(wanted);
+            if (requestOpen_) {
+                if (auto reply = tryReceive()) {
+                    takeAssignment(*reply);
+                    pause = std::chrono::microseconds(20);
+                } else {
+                    pause = std::min(pause * 2, decltype(pause)(250));
+                }
+            }
         }
     } catch (...) {
         error = std::current_exception();  // an MPI-side failure of the main thread

@@ -89,7 +89,7 @@ void checkBeforeLoading(const RenderJob& job, const SceneDesc& desc,
     if (raster && (job.checkpoint || job.resume || job.timeLimit))
         fail("--checkpoint, --resume and --time-limit apply to ray tracing, not --algorithm raster");
     if (job.distributed && (raster || job.checkpoint || job.resume || job.timeLimit))
-        fail("--distributed renders every tile whole, in one go, with the ray tracer: "
+        fail("--distributed renders one image in one go, with the ray tracer: "
              "--algorithm raster, --checkpoint, --resume and --time-limit do not apply to it");
     if (desc.render.denoise && raster)
         fail("render.denoise (--denoise) needs the ray tracer: the rasterizer renders one sample "
@@ -105,9 +105,6 @@ void checkBeforeLoading(const RenderJob& job, const SceneDesc& desc,
                           : job.sampleOffset
                               ? "--sample-offset: which pixels stop depends on all of a render's "
                                 "samples, so the parts of a split render would not add up to it"
-                          : job.distributed
-                              ? "--distributed renders every tile whole, in one go, and "
-                                "adaptive sampling decides between passes over the whole image"
                               : nullptr;
         if (why)
             fail(job.scene.string(), ": /render/adaptive: adaptive sampling does not apply to ",

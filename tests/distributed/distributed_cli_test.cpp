@@ -13,6 +13,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -32,8 +33,9 @@ constexpr int kTimedOut = 124;  // timeout(1)'s status for a command it had to k
 // 50 x 37 is a multiple of no tile size used here, so edge tiles are partial.
 const std::string kScene = (test::sourceDir() / "scenes/statistical/glossy_room.json").string();
 const std::string kImage =
-    " --width 50 --height 37 --spp 4 --exr-float -q --aov normal --aov depth --aov albedo "
+    " --width 50 --height 37 --exr-float -q --aov normal --aov depth --aov albedo "
     "--aov position --aov objectid --aov variance";
+const std::string kSamples = " --spp 4";
 
 struct JobResult {
     int status = -1;
@@ -59,9 +61,11 @@ JobResult mpirun(const std::string& launch, const std::string& env = "") {
 }
 
 // "<strahl> render SCENE <image flags> <flags> -o OUT --distributed"
+// (--spp 4 unless `flags` sets it.)
 std::string strahlRender(const fs::path& out, const std::string& flags,
                          const std::string& scene = kScene) {
-    return std::string(STRAHL_BINARY) + " render " + scene + kImage + flags + " -o " +
+    const std::string samples = test::contains(flags, "--spp") ? "" : kSamples;
+    return std::string(STRAHL_BINARY) + " render " + scene + kImage + samples + flags + " -o " +
            out.string() + " --distributed";
 }
 
@@ -69,10 +73,11 @@ using test::ExrFile;
 using test::expectIdentical;
 using test::readExr;
 
-ExrFile renderLocally(const fs::path& dir) {
+ExrFile renderLocally(const fs::path& dir, const std::string& flags = "") {
     const fs::path out = dir / "local.exr";
     const std::string command = std::string(STRAHL_BINARY) + " render " + kScene + kImage +
-                                " --threads 2 -o " + out.string();
+                                (test::contains(flags, "--spp") ? flags : kSamples + flags) + " --threads 2 -o " +
+                                out.string();
     const JobResult r = runShell(command);
     EXPECT_EQ(r.status, 0) << r.err;
     return readExr(out);
@@ -112,11 +117,48 @@ TEST(Distributed, RankZeroDenoisesTheGatheredImage) {
     const fs::path dir = test::scratchDir("distributed-denoise");
     const fs::path local = dir / "local.exr", out = dir / "mpi.exr";
     const JobResult l = runShell(std::string(STRAHL_BINARY) + " render " + kScene + kImage +
-                                 " --denoise --threads 2 -o " + local.string());
+                                 kSamples + " --denoise --threads 2 -o " + local.string());
     ASSERT_EQ(l.status, 0) << l.err;
     const JobResult r = mpirun("-np 3 " + strahlRender(out, " --denoise --threads 1 --tile 8"));
     ASSERT_EQ(r.status, 0) << r.err;
     expectIdentical(readExr(local), readExr(out), "mpirun -np 3 --denoise");
+}
+
+TEST(Distributed, AdaptiveSamplingGivesTheSingleProcessImageBitForBit) {
+    // Rank 0 takes the decisions between rounds on the gathered film and
+    // sends the running tiles' pixel state out again: the local image, the
+    // per-pixel sample counts (the `samples` AOV) included. 64 spp from 4:
+    // 19 rounds (decisions at 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16,
+    // 18, 20, ...), and a threshold at which some pixels stop early and
+    // others run to the end.
+    const fs::path dir = test::scratchDir("distributed-adaptive");
+    const std::string adaptive = " --spp 64 --adaptive-threshold 0.08 --adaptive-min-samples 4";
+    const ExrFile local = renderLocally(dir, adaptive);
+    const auto samples = std::find(local.channels.begin(), local.channels.end(), "samples.X");
+    ASSERT_NE(samples, local.channels.end()) << "no samples AOV";
+    const size_t channel = static_cast<size_t>(samples - local.channels.begin());
+    const size_t pixels = local.pixels.size() / local.channels.size();
+    float fewest = 1e9f, most = 0.0f;
+    for (size_t p = 0; p < pixels; ++p) {
+        const float n = local.pixels[p * local.channels.size() + channel];
+        fewest = std::min(fewest, n);
+        most = std::max(most, n);
+    }
+    EXPECT_LT(fewest, 64.0f) << "no pixel stopped early: the test would not exercise the rounds";
+    EXPECT_EQ(most, 64.0f) << "every pixel stopped early";
+
+    const fs::path out = dir / "mpi3.exr";
+    JobResult r = mpirun("-np 3 " + strahlRender(out, adaptive + " --threads 1 --tile 8"));
+    ASSERT_EQ(r.status, 0) << r.err;
+    expectIdentical(local, readExr(out), "mpirun -np 3 adaptive, 8-pixel tiles");
+    const fs::path out2 = dir / "mpi2.exr";
+    r = mpirun("-np 2 " + strahlRender(out2, adaptive + " --denoise --threads 2 --tile 16"));
+    ASSERT_EQ(r.status, 0) << r.err;
+    const fs::path localDenoised = dir / "local-denoised.exr";
+    const JobResult l = runShell(std::string(STRAHL_BINARY) + " render " + kScene + kImage +
+                                 adaptive + " --denoise --threads 2 -o " + localDenoised.string());
+    ASSERT_EQ(l.status, 0) << l.err;
+    expectIdentical(readExr(localDenoised), readExr(out2), "mpirun -np 2 adaptive --denoise");
 }
 
 TEST(Distributed, OneRankIsAnError) {
@@ -172,8 +214,8 @@ TEST(Distributed, UnsupportedCombinationsAreErrors) {
                                     std::string(" --time-limit 5")}) {
         const JobResult r = mpirun("-np 2 " + strahlRender(dir / "a.exr", flags));
         EXPECT_EQ(r.status, 1) << flags << ": " << r.err;
-        EXPECT_TRUE(test::contains(r.err, "strahl: error: --distributed renders every tile "
-                                          "whole, in one go, with the ray tracer"))
+        EXPECT_TRUE(test::contains(r.err, "strahl: error: --distributed renders one image in one "
+                                          "go, with the ray tracer"))
             << flags << ": " << r.err;
         expectEmpty(dir);
     }

@@ -197,22 +197,6 @@ TEST(RenderJob, AdaptiveSamplingResumesFromACheckpointWithItsStoppedPixels) {
     expectIdentical(full, readExr(dir / "resumed.exr"), "resumed adaptive render");
 }
 
-TEST(RenderJob, AdaptiveSamplingIsRefusedWhereItsDecisionsCannotBeKept) {
-    const fs::path dir = test::scratchDir("job-adaptive-refused");
-    RenderJob job = roomJob(dir, "refused", 8);
-    job.patches.push_back(patch("/render/adaptive/threshold", "0.01"));
-    job.distributed = true;
-    RecordingObserver observer;
-    try {
-        runRenderJob(job, observer);
-        ADD_FAILURE() << "--distributed with adaptive sampling rendered";
-    } catch (const Error& e) {
-        EXPECT_TRUE(test::contains(e.what(), "adaptive sampling does not apply to --distributed"))
-            << e.what();
-    }
-    EXPECT_FALSE(fs::exists(dir / "refused.exr"));
-}
-
 TEST(RenderJob, SkipExistingRendersNothingWhenEveryOutputIsThereAndComplete) {
     const fs::path dir = test::scratchDir("job-skip");
     RecordingObserver first;

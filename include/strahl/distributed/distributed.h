@@ -3,7 +3,9 @@
 // docs/distributed.md). Every MPI process (rank) runs the same command line and
 // loads the scene itself. Rank 0, the scheduler, hands out tiles on request and
 // gathers the finished ones into its film; the other ranks, the workers, render
-// whole tiles (all samples) with all their threads. A pixel depends only on
+// whole tiles (all samples) with all their threads. With adaptive sampling the
+// samples are rendered in rounds between the decision passes, rank 0 deciding
+// on the whole film between rounds (docs/distributed.md#adaptive-sampling). A pixel depends only on
 // (seed, pixel, sample index), so the gathered film is bit-identical to the one
 // a single process renders.
 //
