@@ -170,6 +170,26 @@ constexpr NamedGlass kGlasses[] = {
     {"glass-LASF9", 1.8550}, {"glass-F5", 1.6054},  {"glass-F10", 1.6241}, {"glass-F11", 1.6241},
 };
 
+// pbrt-v4's named illuminants (lights only) by their CIE 1931 2°
+// chromaticities (CIE 15:2004, tables T.3 and T.8.1; ACES D60 from SMPTE ST
+// 2065-1): pbrt scales a light's spectrum to luminance 1 before its `scale`
+// or `power`, so the chromaticity is all that reaches an RGB render
+// (chromaticityToLinearSrgb). D65 is sRGB's own white, (1, 1, 1) exactly.
+struct NamedIlluminant {
+    std::string_view name;
+    double x, y;
+};
+constexpr NamedIlluminant kIlluminants[] = {
+    {"stdillum-A", 0.44757, 0.40745},   {"stdillum-D50", 0.34567, 0.35850},
+    {"stdillum-F1", 0.31310, 0.33727},  {"stdillum-F2", 0.37208, 0.37529},
+    {"stdillum-F3", 0.40910, 0.39430},  {"stdillum-F4", 0.44018, 0.40329},
+    {"stdillum-F5", 0.31379, 0.34531},  {"stdillum-F6", 0.37790, 0.38835},
+    {"stdillum-F7", 0.31292, 0.32933},  {"stdillum-F8", 0.34588, 0.35875},
+    {"stdillum-F9", 0.37417, 0.37281},  {"stdillum-F10", 0.34609, 0.35986},
+    {"stdillum-F11", 0.38052, 0.37713}, {"stdillum-F12", 0.43695, 0.40441},
+    {"illum-acesD60", 0.32168, 0.33767},
+};
+
 class Converter {
 public:
     Converter(const Scene& scene, const fs::path& cwd) : s_(scene), cwd_(cwd) {}
@@ -446,7 +466,13 @@ private:
                 if (use != Use::Light) bad(p, "an illuminant is only for lights");
                 return glm::dvec3(1.0);  // the white of sRGB, at luminance 1
             }
+            for (const NamedIlluminant& i : kIlluminants)
+                if (name == i.name) {
+                    if (use != Use::Light) bad(p, "an illuminant is only for lights");
+                    return chromaticityToLinearSrgb(i.x, i.y);
+                }
             if (name.rfind("metal-", 0) == 0 || name.rfind("glass-", 0) == 0 || name.rfind("stdillum-", 0) == 0 ||
+                name.rfind("illum-", 0) == 0 ||
                 name.rfind("canon_", 0) == 0 || name.rfind("nikon_", 0) == 0 || name.rfind("sony_", 0) == 0)
                 bad(p, "the named spectrum '" + name + "' is not supported here (docs/pbrt.md)");
             const fs::path path = fs::path(name).is_absolute() ? fs::path(name) : s_.folder / name;

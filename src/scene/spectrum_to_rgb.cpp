@@ -76,4 +76,8 @@ glm::dvec3 spectrumToLinearSrgb(const std::vector<double>& wavelengths,
 
 glm::dvec3 equalEnergyWhiteInLinearSrgb() { return xyzToRgb(glm::dvec3(1.0)); }
 
+glm::dvec3 chromaticityToLinearSrgb(double x, double y) {
+    return xyzToRgb(glm::dvec3(x / y, 1.0, (1.0 - x - y) / y));
+}
+
 }  // namespace strahl::scene_detail

@@ -32,4 +32,10 @@ glm::dvec3 spectrumToLinearSrgb(const std::vector<double>& wavelengths,
 // not the equal-energy white).
 glm::dvec3 equalEnergyWhiteInLinearSrgb();
 
+// The linear sRGB of the light with CIE 1931 chromaticity (x, y) and
+// luminance Y = 1: XYZ = (x / y, 1, (1 − x − y) / y). An emission spectrum
+// enters a render in RGB only through its XYZ, so a named illuminant is
+// exactly its chromaticity (which the CIE tabulates) at a luminance.
+glm::dvec3 chromaticityToLinearSrgb(double x, double y);
+
 }  // namespace strahl::scene_detail

@@ -354,6 +354,39 @@ TEST(PbrtImport, LightsKeepRgbValuesAndNormaliseSpectraToLuminanceOne) {
     EXPECT_EQ(l[5]["radiance"], 0.5);
 }
 
+TEST(PbrtImport, NamedIlluminantsAreTheirChromaticitiesAtLuminanceOne) {
+    // Each named illuminant's RGB, converted back to chromaticity through
+    // sRGB's primaries, is the CIE's (x, y), at luminance 1.
+    const auto chromaticity = [](const glm::dvec3& rgb) {
+        const glm::dvec3 xyz(0.4124564 * rgb.r + 0.3575761 * rgb.g + 0.1804375 * rgb.b,
+                             0.2126729 * rgb.r + 0.7151522 * rgb.g + 0.0721750 * rgb.b,
+                             0.0193339 * rgb.r + 0.1191920 * rgb.g + 0.9503041 * rgb.b);
+        return glm::dvec3(xyz.x / (xyz.x + xyz.y + xyz.z), xyz.y / (xyz.x + xyz.y + xyz.z), xyz.y);
+    };
+    struct Case {
+        const char* name;
+        double x, y;
+    };
+    for (const Case& c : {Case{"stdillum-A", 0.44757, 0.40745}, Case{"stdillum-D50", 0.34567, 0.35850},
+                          Case{"stdillum-F2", 0.37208, 0.37529}, Case{"stdillum-F11", 0.38052, 0.37713},
+                          Case{"illum-acesD60", 0.32168, 0.33767}}) {
+        const json doc = document(scene(kTriangle + "LightSource \"point\" \"spectrum I\" \"" +
+                                        c.name + "\" \"float scale\" 3\n"));
+        const glm::dvec3 xyY = chromaticity(vec(doc["lights"][0]["intensity"]));
+        EXPECT_NEAR(xyY.x, c.x, 2e-4) << c.name;
+        EXPECT_NEAR(xyY.y, c.y, 2e-4) << c.name;
+        EXPECT_NEAR(xyY.z, 3.0, 2e-3) << c.name;
+    }
+    const glm::dvec3 a = vec(document(scene(kTriangle + "LightSource \"point\" \"spectrum I\" "
+                                                        "\"stdillum-A\"\n"))["lights"][0]["intensity"]);
+    EXPECT_GT(a.r, a.g);  // incandescent: warm
+    EXPECT_GT(a.g, a.b);
+    EXPECT_THAT(errorOf(scene("Material \"diffuse\" \"spectrum reflectance\" \"stdillum-F1\"\n" + kTriangle)),
+                HasSubstr("an illuminant is only for lights"));
+    EXPECT_THAT(errorOf(scene(kTriangle + "LightSource \"point\" \"spectrum I\" \"stdillum-F13\"\n")),
+                HasSubstr("the named spectrum 'stdillum-F13' is not supported here"));
+}
+
 TEST(PbrtImport, AreaLightsAreTheEmissionOfTheShapesMaterial) {
     const json doc = document(scene("AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [4 4 4] \"bool twosided\" true\n"
                                     "ReverseOrientation\n" + kTriangle + "AttributeEnd\n" + kTriangle));
