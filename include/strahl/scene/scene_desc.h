@@ -99,7 +99,7 @@ struct RenderDesc {
     // never loses against no roulette (bench/RESULTS.md, "Russian roulette").
     int russianRouletteDepth = 1;
     float russianRouletteThreshold = 0.5f;
-    LightSelection lightSelection = LightSelection::Power;  // path: next-event estimation
+    LightSelection lightSelection = LightSelection::Auto;  // path: next-event estimation
     // path: Cycles-style sample clamping, biased and off (0) by default: the
     // light of one sample after one reflection (direct) or more (indirect) is
     // scaled down so its largest channel is at most this.
