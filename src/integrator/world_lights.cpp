@@ -35,15 +35,18 @@ constexpr size_t kMaxAreaLights = size_t(1) << 24;
 bool lightSampled(const Material& m, const SceneShape& shape) {
     if (!m.emits()) return false;
     if (m.hasUniformEmission()) return true;
-    return m.mapping.kind == TextureMapping::Kind::UV && !shape.tessellated &&
-           m.emission.texture.meshAttribute.empty();
+    bool attribute = false;  // anywhere in the emission's mixes
+    visitTextures(m.emission, TextureEncoding::Color,
+                  [&](const TextureRef& t, TextureEncoding) { attribute |= !t.meshAttribute.empty(); });
+    return m.mapping.kind == TextureMapping::Kind::UV && !shape.tessellated && !attribute;
 }
 
 // The mean of a textured emission's pattern over its image (for the light's
 // power, which only weighs the light's choice): the texture's top MIP level,
-// or the checkerboard's two colours; 1 for a uniform emission.
+// or the checkerboard's two colours; 1 for a uniform emission or a mix.
 float patternMean(const Material& m, const TextureSystem* textures) {
     const TexturedColor& e = m.emission;
+    if (e.mix) return 1.0f;
     if (e.checkerboard)
         return 0.5f * (light_detail::mean(e.checkerboard->color0) + light_detail::mean(e.checkerboard->color1));
     if (e.texture.valid() && textures)

@@ -53,6 +53,9 @@ FloatImage readFloatImage(const fs::path& file, const char* what, size_t maxPixe
     image.width = spec.width;
     image.height = spec.height;
     image.channels = spec.nchannels >= 3 ? 3 : 1;
+    image.integer = spec.format.basetype != OIIO::TypeDesc::FLOAT &&
+                    spec.format.basetype != OIIO::TypeDesc::HALF &&
+                    spec.format.basetype != OIIO::TypeDesc::DOUBLE;
     image.pixels.resize(columns * rows * static_cast<size_t>(image.channels));
     if (!in->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
         fail(name, ": cannot read the ", what, ": ", oneLine(in->geterror()));

@@ -13,6 +13,9 @@ struct FloatImage {
     int width = 0, height = 0;
     int channels = 0;           // 1 or 3
     std::vector<float> pixels;  // row-major from the top row, channels interleaved
+    // Stored as integers (8 or 16 bits), normalised: the texture system
+    // decodes such colour images from sRGB (texture_system.h).
+    bool integer = false;
 };
 
 // Reads the first channel of a one- or two-channel image, else the first

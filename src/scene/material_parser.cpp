@@ -60,10 +60,44 @@ void parseMeshAttribute(const JsonValue& v, std::initializer_list<std::string_vi
     if (out.meshAttribute.empty()) v.get("attribute").fail("must name an attribute");
 }
 
+// Mixes nest (a mix of mixes); deeper than this is refused, so a hostile
+// file cannot exhaust the stack of the recursive parse and evaluation.
+constexpr int kMaxMixDepth = 16;
+
+// The [a, b] of {"mix": [a, b], "amount": t, "scale": s}, whose keys it
+// checks; `depth` counts the mixes around it.
+JsonValue mixPair(const JsonValue& v, int depth) {
+    for (const auto& item : v.raw().items())
+        if (item.key() != "mix" && item.key() != "amount" && item.key() != "scale")
+            v.get(item.key()).fail("not a key of a mix (allowed: mix, amount, scale)");
+    if (depth >= kMaxMixDepth) v.fail("mixes nested deeper than ", kMaxMixDepth, " are not supported");
+    const JsonValue pair = v.get("mix");
+    if (!pair.raw().is_array() || pair.size() != 2)
+        pair.fail("expected [a, b], the two inputs the amount blends, got ",
+                  pair.raw().is_array() ? std::to_string(pair.size()) + " values" : pair.describe());
+    return pair;
+}
+
+void parseTexturedFloat(const JsonValue& v, const fs::path& folder, float lo, float hi,
+                        TexturedFloat& out, int depth = 0);
+
 // A colour given as a number, [r, g, b], {"texture": file, "scale": colour,
-// "raw": false, sampling keys}, {"attribute": name, "scale": colour} or {"checkerboard":
-// {...}, "scale": colour}.
-void parseTexturedColor(const JsonValue& v, const fs::path& folder, TexturedColor& out) {
+// "raw": false, sampling keys}, {"attribute": name, "scale": colour}, {"checkerboard":
+// {...}, "scale": colour} or {"mix": [a, b], "amount": t, "scale": colour}
+// (a and b colours of any of these forms, t a scalar in [0, 1] of any form).
+void parseTexturedColor(const JsonValue& v, const fs::path& folder, TexturedColor& out,
+                        int depth = 0) {
+    if (v.raw().is_object() && v.has("mix")) {
+        const JsonValue pair = mixPair(v, depth);
+        ColorMix mix;
+        parseTexturedColor(pair.at(0), folder, mix.a, depth + 1);
+        parseTexturedColor(pair.at(1), folder, mix.b, depth + 1);
+        if (auto amount = v.find("amount")) parseTexturedFloat(*amount, folder, 0.0f, 1.0f, mix.amount, depth + 1);
+        out.mix = NodeBox<ColorMix>(std::move(mix));
+        out.value = Color(1.0f);
+        if (auto scale = v.find("scale")) out.value = scale->color();
+        return;
+    }
     if (v.raw().is_object() && v.has("attribute")) {
         parseMeshAttribute(v, {"scale"}, out.texture);
         out.value = Color(1.0f);
@@ -93,10 +127,22 @@ void parseTexturedColor(const JsonValue& v, const fs::path& folder, TexturedColo
 }
 
 // A scalar in [lo, hi] given as a number, {"texture": file, "channel": "g",
-// "scale": x, "raw": true, sampling keys}, {"attribute": name, "channel": "g", "scale": x}
-// or {"checkerboard": {"color0": x, "color1": y, "scale": s}, "scale": x}.
+// "scale": x, "raw": true, sampling keys}, {"attribute": name, "channel": "g", "scale": x},
+// {"checkerboard": {"color0": x, "color1": y, "scale": s}, "scale": x} or
+// {"mix": [a, b], "amount": t, "scale": x} (a and b scalars of any of these forms).
 void parseTexturedFloat(const JsonValue& v, const fs::path& folder, float lo, float hi,
-                        TexturedFloat& out) {
+                        TexturedFloat& out, int depth) {
+    if (v.raw().is_object() && v.has("mix")) {
+        const JsonValue pair = mixPair(v, depth);
+        FloatMix mix;
+        parseTexturedFloat(pair.at(0), folder, lo, hi, mix.a, depth + 1);
+        parseTexturedFloat(pair.at(1), folder, lo, hi, mix.b, depth + 1);
+        if (auto amount = v.find("amount")) parseTexturedFloat(*amount, folder, 0.0f, 1.0f, mix.amount, depth + 1);
+        out.mix = NodeBox<FloatMix>(std::move(mix));
+        out.value = 1.0f;
+        if (auto scale = v.find("scale")) out.value = scale->numberIn(lo, hi);
+        return;
+    }
     if (v.raw().is_object()) {
         if (v.has("attribute")) {
             parseMeshAttribute(v, {"channel", "scale"}, out.texture);
@@ -255,6 +301,8 @@ MaterialDesc parseMaterial(const JsonValue& m, const fs::path& folder) {
         if (!mat.opacity.texture.meshAttribute.empty())
             opacity->fail("an opacity is read where rays are tested, through the uvs only: a "
                           "mesh attribute cannot be one");
+        if (mat.opacity.mix)
+            opacity->fail("an opacity is one image or a number: a mix cannot be one");
         if (mat.mapping.kind == TextureMapping::Kind::Triplanar && !mat.opacity.texture.file.empty())
             opacity->fail("an opacity texture is read through the uvs: it cannot be mapped "
                           "triplanar");

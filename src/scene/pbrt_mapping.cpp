@@ -60,6 +60,27 @@ double upperHemisphereIlluminance(const std::filesystem::path& file) {
     return sum * 4.0 * glm::pi<double>() / (double(image.width) * double(image.height));
 }
 
+// The mean luminance of an area light's image as strahl's texture system
+// reads it for a colour (integer images decoded from sRGB): pbrt-v4's k_e,
+// by which `power` divides.
+double meanImageLuminance(const std::filesystem::path& file) {
+    const FloatImage image = readFloatImage(file, "area light image", size_t(1) << 28);
+    const auto linear = [&](float v) {
+        if (!image.integer) return double(v);
+        // The sRGB EOTF (IEC 61966-2-1), as the texture system applies it.
+        const double c = std::clamp(double(v), 0.0, 1.0);
+        return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+    };
+    double sum = 0.0;
+    const size_t pixels = size_t(image.width) * size_t(image.height);
+    for (size_t i = 0; i < pixels; ++i) {
+        const float* p = &image.pixels[i * size_t(image.channels)];
+        sum += image.channels == 1 ? linear(p[0])
+                                   : luminance(glm::dvec3(linear(p[0]), linear(p[1]), linear(p[2])));
+    }
+    return sum / double(pixels);
+}
+
 json vec3(glm::dvec3 v) { return json::array({v.x, v.y, v.z}); }
 json color(glm::dvec3 c) {
     if (c.r == c.g && c.g == c.b) return c.r;
@@ -595,8 +616,20 @@ private:
             const bool swap = std::fmod(sv, 2.0) == 0.0;
             out = {{"checkerboard", {{"color0", color(swap ? c2 : c1)}, {"color1", color(swap ? c1 : c2)},
                                      {"scale", {su / 2.0, sv / 2.0}}}}};
+        } else if (t.type == "mix") {
+            // pbrt-v4: (1 − amount) tex1 + amount tex2, each a value or a
+            // texture (tex1 0, tex2 1, amount 0.5 by default): strahl's mix.
+            const Parameter* t1 = param(t, "tex1");
+            const Parameter* t2 = param(t, "tex2");
+            const Parameter* amount = param(t, "amount");
+            json a = t1 ? input(*t1, spectral, use) : json(0.0);
+            json b = t2 ? input(*t2, spectral, use) : json(1.0);
+            json blend = amount ? input(*amount, false, Use::Unbounded) : json(0.5);
+            if (blend.is_number() && !(blend.get<double>() >= 0.0 && blend.get<double>() <= 1.0))
+                bad(*amount, "an amount outside [0, 1] is not supported");
+            out = {{"mix", json::array({std::move(a), std::move(b)})}, {"amount", std::move(blend)}};
         } else {
-            unsupported(t, "this texture is not supported (imagemap, constant, scale, checkerboard)");
+            unsupported(t, "this texture is not supported (imagemap, constant, scale, mix, checkerboard)");
         }
         refuseUnread(t);
         return out;
@@ -925,16 +958,31 @@ private:
         glm::dvec3 radiance = L ? spectrum(*L, Use::Light) : glm::dvec3(1.0);
         double scale = number(light, "scale", 1.0);
         twoSided = boolean(light, "twosided", false);
-        if (const Parameter* f = light.params.find("filename")) bad(*f, "an image on an area light is not supported");
+        // An image: pbrt-v4 emits scale × the image's RGB at the point's
+        // (u, 1 − v), bilinear, clamped at the borders — strahl's textured
+        // emission (a triangle light per triangle, sampled by its texels).
+        const Parameter* image = typed(light, "filename", {"string"});
+        if (image && L) unsupported(light, "give either L or filename");
         if (const Parameter* power = typed(light, "power", {"float"})) {
             // pbrt: the radiance that gives each triangle this power (W), k_e
-            // = π (2π two-sided) × its area; an rgb radiance keeps its colour.
+            // = π (2π two-sided) × its area, times an image's mean
+            // luminance; an rgb radiance keeps its colour.
             const double area = shapeArea(shape);
-            const double k = (twoSided ? 2.0 : 1.0) * glm::pi<double>() * area;
+            double k = (twoSided ? 2.0 : 1.0) * glm::pi<double>() * area;
             if (!(area > 0.0)) unsupported(shape.entity, "power needs a shape with an area");
+            if (image) {
+                const fs::path name = file(*image);
+                k *= meanImageLuminance(name.is_absolute() ? name : s_.folder / name);
+                if (!(k > 0.0)) bad(*image, "the image is black: no scale gives it a power");
+            }
             scale *= power->numbers[0] / k;
         }
         refuseUnread(light);
+        if (image) {
+            json out = {{"texture", file(*image)}, {"wrap", "clamp"}, {"filter", "bilinear"}};
+            if (scale != 1.0) out["scale"] = scale;
+            return out;
+        }
         return color(radiance * scale);
     }
 

@@ -201,6 +201,30 @@ TEST(PathTracer, MisBsdfOnlyAndLightOnlyConvergeToTheSameImage) {
     }
 }
 
+// A lamp whose emission is a mix (a checkerboard blended with a constant by
+// a finer checkerboard) is light-sampled through the same code: the three
+// estimators agree. With the amount 0 everywhere, the mix is its first
+// input: the image of that input alone, bit for bit.
+TEST(PathTracer, AMixedLampIsLightSampledWithoutBias) {
+    const std::string mixed =
+        R"({ "mix": [{ "checkerboard": { "color0": 1, "color1": 0.1, "scale": 2 } }, 0.5],
+             "amount": { "checkerboard": { "color0": 0, "color1": 1, "scale": 5 } }, "scale": 8 })";
+    const Image mis = renderText(roomScene(256, mixed), "mixed_mis", LightSampling::Mis);
+    const Image bsdf = renderText(roomScene(1024, mixed), "mixed_bsdf", LightSampling::BsdfOnly);
+    const Image light = renderText(roomScene(256, mixed), "mixed_light", LightSampling::LightOnly);
+    for (const Image* other : {&bsdf, &light}) {
+        const Agreement a = compare(mis, *other);
+        EXPECT_NEAR(a.meanA, a.meanB, 0.02 * a.meanA);
+        EXPECT_LT(a.outliers, 0.01);
+    }
+    const std::string first =
+        R"({ "mix": [{ "checkerboard": { "color0": 1, "color1": 0.1, "scale": 2 } }, 0.5],
+             "amount": 0, "scale": 8 })";
+    const Image mixedFirst = renderText(roomScene(16, first), "mixed_first");
+    const Image patterned = renderText(roomScene(16, kPatternedLamp), "patterned_16");
+    EXPECT_EQ(mixedFirst.beauty, patterned.beauty);
+}
+
 // A patterned lamp is light-sampled too: light sampling reads the pattern at
 // the sampled point, BSDF sampling where the ray lands, and the MIS weights
 // of both agree, so all three estimators still converge to one image.

@@ -19,6 +19,7 @@
 
 #include "strahl/core/equal_area.h"
 #include "strahl/integrator/world.h"
+#include "strahl/material/diffuse.h"
 #include "strahl/scene/scene_builder.h"
 #include "strahl/scene/scene_desc.h"
 #include "strahl/scene/scene_document.h"
@@ -425,6 +426,68 @@ TEST(PbrtImport, AnAreaLightsPowerIsEveryTrianglesAsInPbrt) {
     EXPECT_NEAR(patch["materials"][0]["emission"].get<double>(), 3.0 / M_PI, 1e-5);
 }
 
+// A w x h image of one value per channel: float EXR, or 8-bit PNG (sRGB-encoded).
+void writeFlatImage(const fs::path& file, int w, int h, glm::vec3 value, bool eightBit = false) {
+    std::vector<float> pixels;
+    for (int i = 0; i < w * h; ++i) pixels.insert(pixels.end(), {value.r, value.g, value.b});
+    auto out = OIIO::ImageOutput::create(file.string());
+    const OIIO::TypeDesc type = eightBit ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT;
+    ASSERT_TRUE(out && out->open(file.string(), OIIO::ImageSpec(w, h, 3, type)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+    out->close();
+}
+
+TEST(PbrtImport, AnImageOnAnAreaLightIsTexturedEmission) {
+    // pbrt-v4 emits scale x the image at (u, 1 - v), clamped at the borders;
+    // with "power", k_e is pi x area x the image's mean luminance.
+    const fs::path dir = test::scratchDir("pbrt-image-area-light");
+    writeFlatImage(dir / "glow.exr", 4, 2, {1.0f, 2.0f, 3.0f});
+    const std::string quad =
+        "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 1 1 0 0 1 0] \"point2 uv\" [0 0 1 0 1 1 0 1] "
+        "\"integer indices\" [0 1 2 0 2 3]\n";
+    const auto emissionOf = [&](const std::string& light) {
+        return document(scene("AttributeBegin\nAreaLightSource \"diffuse\" " + light + "\n" + quad + "AttributeEnd\n"),
+                        dir / "scene.pbrt")["materials"][0]["emission"];
+    };
+    const json plain = emissionOf("\"string filename\" \"glow.exr\" \"float scale\" 2");
+    EXPECT_EQ(plain["texture"], "glow.exr");
+    EXPECT_EQ(plain["wrap"], "clamp");
+    EXPECT_EQ(plain["filter"], "bilinear");
+    EXPECT_EQ(plain["scale"], 2.0);
+    // Power pi on triangles of area 1/2: scale = pi / (pi x 1/2 x Y), Y the
+    // image's luminance.
+    const double Y = 0.2126729 * 1.0 + 0.7151522 * 2.0 + 0.0721750 * 3.0;
+    const json powered = emissionOf("\"string filename\" \"glow.exr\" \"float power\" " + std::to_string(M_PI));
+    EXPECT_NEAR(powered["scale"].get<double>(), 2.0 / Y, 1e-5);
+    // An 8-bit PNG is decoded from sRGB, as the texture system reads it: 128
+    // is 0.21586 in linear.
+    writeFlatImage(dir / "glow.png", 2, 2, {128.0f / 255.0f, 128.0f / 255.0f, 128.0f / 255.0f}, true);
+    const json png = emissionOf("\"string filename\" \"glow.png\" \"float power\" " + std::to_string(M_PI));
+    EXPECT_NEAR(png["scale"].get<double>(), 2.0 / 0.2158605, 1e-4);
+    // The scene builds, each triangle a light.
+    const SceneDesc d =
+        SceneDocument::fromText(scene("AttributeBegin\nAreaLightSource \"diffuse\" \"string filename\" \"glow.exr\"\n" +
+                                      quad + "AttributeEnd\n"),
+                                dir / "scene.pbrt")
+            .parse();
+    const BuiltScene built = buildScene(d, BuildOptions{});
+    EXPECT_EQ(built.world.lightSet.lights().size(), 2u);
+
+    EXPECT_THAT(errorOf(scene("AttributeBegin\nAreaLightSource \"diffuse\" \"string filename\" \"glow.exr\" "
+                              "\"rgb L\" [1 1 1]\n" + quad + "AttributeEnd\n"),
+                        dir / "scene.pbrt"),
+                HasSubstr("give either L or filename"));
+    writeFlatImage(dir / "black.exr", 2, 2, {0.0f, 0.0f, 0.0f});
+    EXPECT_THAT(errorOf(scene("AttributeBegin\nAreaLightSource \"diffuse\" \"string filename\" \"black.exr\" "
+                              "\"float power\" 1\n" + quad + "AttributeEnd\n"),
+                        dir / "scene.pbrt"),
+                HasSubstr("the image is black: no scale gives it a power"));
+    EXPECT_THAT(errorOf(scene("AttributeBegin\nAreaLightSource \"diffuse\" \"string filename\" \"none.exr\"\n" +
+                              quad + "AttributeEnd\n"),
+                        dir / "scene.pbrt"),
+                HasSubstr("no such file 'none.exr'"));
+}
+
 TEST(PbrtImport, PowerOnPlymeshAndLoopsubdivLights) {
     // A PLY of two triangles of area 1/2 each (a unit square cut in two),
     // scaled by 2: each triangle has area 2 in the world, so power 4 pi gives
@@ -469,6 +532,42 @@ TEST(PbrtImport, CheckerboardsKeepPbrtsParity) {
                          "\"rgb tex1\" [1 1 1] \"rgb tex2\" [0 0 0]\nMaterial \"diffuse\" \"texture reflectance\" \"c\"\n" +
                          kTriangle));
     EXPECT_EQ(doc["materials"][0]["color"]["checkerboard"]["color0"], 1.0);
+}
+
+TEST(PbrtImport, MixTexturesBecomeMixInputs) {
+    // pbrt-v4: (1 - amount) tex1 + amount tex2; the amount may itself be a
+    // texture, and tex1, tex2 values or textures (defaults 0, 1, 0.5).
+    json doc = document(scene(
+        "Texture \"c\" \"spectrum\" \"checkerboard\" \"rgb tex1\" [1 1 1] \"rgb tex2\" [0 0 0]\n"
+        "Texture \"mask\" \"float\" \"mix\" \"float tex1\" 0.2 \"float tex2\" 0.6\n"
+        "Texture \"m\" \"spectrum\" \"mix\" \"texture tex1\" \"c\" \"rgb tex2\" [0.1 0.2 0.3] "
+        "\"texture amount\" \"mask\"\n"
+        "Material \"diffuse\" \"texture reflectance\" \"m\"\n" + kTriangle));
+    const json& mix = doc["materials"][0]["color"];
+    ASSERT_TRUE(mix.contains("mix")) << mix.dump();
+    EXPECT_TRUE(mix["mix"][0].contains("checkerboard"));
+    EXPECT_EQ(mix["mix"][1], json::array({0.1, 0.2, 0.3}));
+    // A float mix as the amount: tex1 0.2, tex2 0.6, amount 0.5 by default.
+    EXPECT_EQ(mix["amount"]["mix"], json::array({0.2, 0.6}));
+    EXPECT_EQ(mix["amount"]["amount"], 0.5);
+    // The strahl scene parses and builds: the mix is an input like any other.
+    const SceneDesc d = SceneDocument::fromText(scene(
+        "Texture \"m\" \"spectrum\" \"mix\" \"rgb tex1\" [1 0 0] \"rgb tex2\" [0 0 1] \"float amount\" 0.25\n"
+        "Material \"diffuse\" \"texture reflectance\" \"m\"\n" + kTriangle), "scene.pbrt").parse();
+    bool found = false;
+    for (const auto& m : d.materials)
+        if (const auto* diffuse = std::get_if<DiffuseMaterial>(&m.material.kind); diffuse && diffuse->color.mix) {
+            found = true;
+            EXPECT_EQ(diffuse->color.mix->amount.value, 0.25f);
+            EXPECT_EQ(diffuse->color.mix->b.value, Color(0.0f, 0.0f, 1.0f));
+        }
+    EXPECT_TRUE(found);
+    EXPECT_THAT(errorOf(scene("Texture \"m\" \"spectrum\" \"mix\" \"float amount\" 2\n"
+                              "Material \"diffuse\" \"texture reflectance\" \"m\"\n" + kTriangle)),
+                HasSubstr("\"float amount\": an amount outside [0, 1] is not supported"));
+    EXPECT_THAT(errorOf(scene("Texture \"d\" \"spectrum\" \"directionmix\"\n"
+                              "Material \"diffuse\" \"texture reflectance\" \"d\"\n" + kTriangle)),
+                HasSubstr("this texture is not supported (imagemap, constant, scale, mix, checkerboard)"));
 }
 
 TEST(PbrtImport, IncludesSpliceFilesInAndCyclesAreRefused) {

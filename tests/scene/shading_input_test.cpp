@@ -16,6 +16,7 @@
 #include "strahl/core/error.h"
 #include "strahl/integrator/environment_light.h"
 #include "strahl/material/diffuse.h"
+#include "strahl/material/plastic.h"
 #include "strahl/meshio/mesh_file.h"
 #include "strahl/scene/scene_builder.h"
 #include "strahl/scene/scene_desc.h"
@@ -259,6 +260,40 @@ TEST(ShadingInput, TextureSamplingKeys) {
                          "/materials/0/mapping: a triplanar mapping has no uv"));
     EXPECT_TRUE(contains(error(R"({"name": "m", "color": {"checkerboard": {}, "filter": "nearest"}})"),
                          "/materials/0/color/filter: applies to image textures, not to a checkerboard"));
+}
+
+TEST(ShadingInput, MixKeys) {
+    const fs::path dir = test::scratchDir("shading-mix");
+    test::writeFile(dir / "wood.png", "not read while parsing");
+    const SceneDesc ok = parseIn(dir, R"("materials": [{"name": "m", "color": {"mix": [[1, 0, 0],
+        {"mix": [0.2, {"texture": "wood.png"}]}], "amount": {"checkerboard": {"color0": 0, "color1": 1}},
+        "scale": 2}, "roughness": {"mix": [0.1, 0.9], "amount": 0.25}, "type": "plastic"}])");
+    const auto& plastic = std::get<PlasticMaterial>(ok.materials.at(0).material.kind);
+    ASSERT_TRUE(plastic.color.mix);
+    EXPECT_EQ(plastic.color.value, Color(2.0f));
+    EXPECT_EQ(plastic.color.mix->a.value, Color(1.0f, 0.0f, 0.0f));
+    ASSERT_TRUE(plastic.color.mix->b.mix);  // nested, amount 0.5 by default
+    EXPECT_EQ(plastic.color.mix->b.mix->amount.value, 0.5f);
+    EXPECT_EQ(plastic.color.mix->b.mix->b.texture.file.filename(), "wood.png");
+    EXPECT_TRUE(plastic.color.mix->amount.checkerboard.has_value());
+    EXPECT_TRUE(plastic.color.varies());
+    ASSERT_TRUE(plastic.roughness.mix);
+    EXPECT_EQ(plastic.roughness.mix->amount.value, 0.25f);
+    EXPECT_FALSE(plastic.roughness.varies());
+
+    EXPECT_EQ(materialError(R"({"name": "m", "color": {"mix": [1, 0, 0]}})"),
+              "scene.json: /materials/0/color/mix: expected [a, b], the two inputs the amount "
+              "blends, got 3 values");
+    EXPECT_EQ(materialError(R"({"name": "m", "color": {"mix": [1, 0], "weight": 0.5}})"),
+              "scene.json: /materials/0/color/weight: not a key of a mix (allowed: mix, amount, scale)");
+    EXPECT_EQ(materialError(R"({"name": "m", "color": {"mix": [1, 0], "amount": 1.5}})"),
+              "scene.json: /materials/0/color/amount: must be in [0, 1], got 1.5");
+    EXPECT_THAT(materialError(R"({"name": "m", "opacity": {"mix": [1, 0]}})"),
+                testing::HasSubstr("/materials/0/opacity: an opacity is one image or a number: a mix cannot be one"));
+    std::string deep = "0.5";
+    for (int i = 0; i < 17; ++i) deep = R"({"mix": [)" + deep + ", 1]}";
+    EXPECT_THAT(materialError(R"({"name": "m", "color": )" + deep + "}"),
+                testing::HasSubstr("mixes nested deeper than 16 are not supported"));
 }
 
 TEST(ShadingInput, TextureThatIsNotAnImageFailsWhenTheWorldIsBuilt) {

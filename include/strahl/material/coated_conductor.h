@@ -61,8 +61,8 @@ struct CoatedConductorMaterial {
     }
     template <typename Fn>
     void forEachTexture(Fn&& fn) {
-        fn(roughness.texture, TextureEncoding::Data);
-        fn(coatRoughness.texture, TextureEncoding::Data);
+        visitTextures(roughness, TextureEncoding::Data, fn);
+        visitTextures(coatRoughness, TextureEncoding::Data, fn);
     }
 };
 

@@ -57,8 +57,8 @@ struct ConductorMaterial {
     }
     template <typename Fn>
     void forEachTexture(Fn&& fn) {
-        fn(roughnessU.texture, TextureEncoding::Data);
-        fn(roughnessV.texture, TextureEncoding::Data);
+        visitTextures(roughnessU, TextureEncoding::Data, fn);
+        visitTextures(roughnessV, TextureEncoding::Data, fn);
     }
 };
 

@@ -40,8 +40,8 @@ struct DielectricMaterial {
     }
     template <typename Fn>
     void forEachTexture(Fn&& fn) {
-        fn(tint.texture, TextureEncoding::Color);
-        fn(roughness.texture, TextureEncoding::Data);
+        visitTextures(tint, TextureEncoding::Color, fn);
+        visitTextures(roughness, TextureEncoding::Data, fn);
     }
 };
 

@@ -28,7 +28,7 @@ struct DiffuseMaterial {
     Bsdf bsdf(const MaterialPoint& p) const { return Bsdf::diffuse(p.reflectance(color)); }
     template <typename Fn>
     void forEachTexture(Fn&& fn) {
-        fn(color.texture, TextureEncoding::Color);
+        visitTextures(color, TextureEncoding::Color, fn);
     }
 };
 

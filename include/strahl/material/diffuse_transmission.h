@@ -37,8 +37,8 @@ struct DiffuseTransmissionMaterial {
     }
     template <typename Fn>
     void forEachTexture(Fn&& fn) {
-        fn(color.texture, TextureEncoding::Color);
-        fn(transmittance.texture, TextureEncoding::Color);
+        visitTextures(color, TextureEncoding::Color, fn);
+        visitTextures(transmittance, TextureEncoding::Color, fn);
     }
 };
 

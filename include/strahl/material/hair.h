@@ -69,7 +69,7 @@ struct HairMaterial {
     }
     template <typename Fn>
     void forEachTexture(Fn&& fn) {
-        fn(color.texture, TextureEncoding::Color);
+        visitTextures(color, TextureEncoding::Color, fn);
     }
 };
 

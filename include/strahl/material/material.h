@@ -45,7 +45,7 @@ struct Material {
     // Emission that does not vary over the surface (no texture): such
     // triangles become area lights for next-event estimation.
     bool hasUniformEmission() const {
-        return emits() && !emission.texture.varies() && !emission.checkerboard;
+        return emits() && !emission.varies();
     }
     // Whether some of the surface may be a hole.
     bool cutsOut() const { return opacity.value < 1.0f || !opacity.texture.file.empty(); }
@@ -56,8 +56,8 @@ struct Material {
     template <typename Fn>
     void forEachTexture(Fn&& fn) {
         std::visit([&](auto& k) { k.forEachTexture(fn); }, kind);
-        fn(opacity.texture, TextureEncoding::Data);
-        fn(emission.texture, TextureEncoding::Color);
+        visitTextures(opacity, TextureEncoding::Data, fn);
+        visitTextures(emission, TextureEncoding::Color, fn);
         fn(normalMap, TextureEncoding::Data);
         fn(bumpMap, TextureEncoding::Data);
     }

@@ -61,7 +61,7 @@ template <typename Fn>
 void BlendMaterial::forEachTexture(Fn&& fn) {
     for (const std::unique_ptr<MaterialKindBox>& part : parts)
         std::visit([&](auto& kind) { kind.forEachTexture(fn); }, part->kind);
-    fn(weight.texture, TextureEncoding::Data);
+    visitTextures(weight, TextureEncoding::Data, fn);
 }
 
 }  // namespace strahl

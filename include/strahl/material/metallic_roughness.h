@@ -42,9 +42,9 @@ struct MetallicRoughnessMaterial {
     }
     template <typename Fn>
     void forEachTexture(Fn&& fn) {
-        fn(color.texture, TextureEncoding::Color);
-        fn(roughness.texture, TextureEncoding::Data);
-        fn(metallic.texture, TextureEncoding::Data);
+        visitTextures(color, TextureEncoding::Color, fn);
+        visitTextures(roughness, TextureEncoding::Data, fn);
+        visitTextures(metallic, TextureEncoding::Data, fn);
     }
 };
 

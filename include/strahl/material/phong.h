@@ -49,7 +49,7 @@ struct PhongLikeMaterial {
     }
     template <typename Fn>
     void forEachTexture(Fn&& fn) {
-        fn(color.texture, TextureEncoding::Color);
+        visitTextures(color, TextureEncoding::Color, fn);
     }
 };
 

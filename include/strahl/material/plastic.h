@@ -76,8 +76,8 @@ struct PlasticMaterial {
     }
     template <typename Fn>
     void forEachTexture(Fn&& fn) {
-        fn(color.texture, TextureEncoding::Color);
-        fn(roughness.texture, TextureEncoding::Data);
+        visitTextures(color, TextureEncoding::Color, fn);
+        visitTextures(roughness, TextureEncoding::Data, fn);
     }
 };
 

@@ -106,11 +106,11 @@ struct PrincipledMaterial {
     }
     template <typename Fn>
     void forEachTexture(Fn&& fn) {
-        fn(color.texture, TextureEncoding::Color);
+        visitTextures(color, TextureEncoding::Color, fn);
         for (TexturedFloat* f : {&roughness, &anisotropic, &metallic, &specularTint, &sheen,
                                  &sheenTint, &clearcoat, &clearcoatGloss, &transmission,
                                  &flatness, &diffuseTransmission})
-            fn(f->texture, TextureEncoding::Data);
+            visitTextures(*f, TextureEncoding::Data, fn);
     }
 };
 

@@ -5,6 +5,7 @@
 // from these.
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 
 #include "strahl/core/math.h"
@@ -47,26 +48,94 @@ struct Checkerboard {
     Color at(Vec2 uv) const;
 };
 
+// Owns one node of a texture graph (a mix) and copies it deeply, so that
+// copies of a material never share the nodes whose texture handles the world
+// sets. Empty by default.
+template <typename Node>
+class NodeBox {
+public:
+    NodeBox() = default;
+    explicit NodeBox(Node node) : node_(std::make_unique<Node>(std::move(node))) {}
+    NodeBox(const NodeBox& other) : node_(other.node_ ? std::make_unique<Node>(*other.node_) : nullptr) {}
+    NodeBox& operator=(const NodeBox& other) {
+        if (this != &other) node_ = other.node_ ? std::make_unique<Node>(*other.node_) : nullptr;
+        return *this;
+    }
+    NodeBox(NodeBox&&) noexcept = default;
+    NodeBox& operator=(NodeBox&&) noexcept = default;
+    ~NodeBox() = default;
+
+    explicit operator bool() const { return node_ != nullptr; }
+    Node& operator*() { return *node_; }
+    const Node& operator*() const { return *node_; }
+    Node* operator->() { return node_.get(); }
+    const Node* operator->() const { return node_.get(); }
+
+private:
+    std::unique_ptr<Node> node_;
+};
+
+struct ColorMix;
+struct FloatMix;
+
 // A colour, optionally multiplied by a texture's RGB (an image's or a mesh
-// attribute's) or a checkerboard.
+// attribute's), a checkerboard, or a mix of two colour inputs; one of the three.
 struct TexturedColor {
     Color value{1.0f};
     TextureRef texture;
     std::optional<Checkerboard> checkerboard = std::nullopt;  // exclusive with texture
+    NodeBox<ColorMix> mix = {};                               // exclusive with both
+
+    // Whether the value varies over the surface.
+    bool varies() const;
 };
 
 // A scalar, optionally multiplied by one channel of a texture (an image's or
-// a mesh attribute's) or by a checkerboard of numbers.
+// a mesh attribute's), by a checkerboard of numbers or by a mix of two scalar
+// inputs.
 struct TexturedFloat {
     float value = 0.0f;
     TextureRef texture;
     int channel = 0;  // 0 R, 1 G, 2 B, 3 A
     // Exclusive with texture: a checkerboard of two numbers (its colours grey).
     std::optional<Checkerboard> checkerboard = std::nullopt;
+    NodeBox<FloatMix> mix = {};  // exclusive with texture and checkerboard
 
     // Whether the value varies over the surface.
-    bool varies() const { return texture.varies() || checkerboard.has_value(); }
+    bool varies() const;
 };
+
+// (1 − amount) a + amount b at each point (pbrt's "mix" texture): two inputs
+// blended by a third, each constant or textured, mixes included.
+struct ColorMix {
+    TexturedColor a, b;
+    TexturedFloat amount{0.5f, {}, 0};
+};
+struct FloatMix {
+    TexturedFloat a, b;
+    TexturedFloat amount{0.5f, {}, 0};
+};
+
+inline bool TexturedColor::varies() const {
+    return texture.varies() || checkerboard.has_value() ||
+           (mix && (mix->a.varies() || mix->b.varies() || mix->amount.varies()));
+}
+inline bool TexturedFloat::varies() const {
+    return texture.varies() || checkerboard.has_value() ||
+           (mix && (mix->a.varies() || mix->b.varies() || mix->amount.varies()));
+}
+
+// Calls fn(TextureRef&, encoding) for the texture of `input` (a
+// TexturedColor or TexturedFloat, const or not) and for every texture of its
+// mix, depth first; a mix's amount is data.
+template <typename Input, typename Fn>
+void visitTextures(Input& input, TextureEncoding encoding, Fn&& fn) {
+    fn(input.texture, encoding);
+    if (!input.mix) return;
+    visitTextures(input.mix->a, encoding, fn);
+    visitTextures(input.mix->b, encoding, fn);
+    visitTextures(input.mix->amount, TextureEncoding::Data, fn);
+}
 
 // How a texture is placed on the surface.
 struct TextureMapping {

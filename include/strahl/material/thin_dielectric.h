@@ -34,7 +34,7 @@ struct ThinDielectricMaterial {
     }
     template <typename Fn>
     void forEachTexture(Fn&& fn) {
-        fn(tint.texture, TextureEncoding::Color);
+        visitTextures(tint, TextureEncoding::Color, fn);
     }
 };
 
