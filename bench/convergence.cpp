@@ -13,7 +13,8 @@
 // dividing by zero; the same measure as bench_roulette's relVar).
 //
 // The figure of merit is the time each method needs to reach a given error:
-// the error fixed sampling reaches at --target-spp (64), read off each
+// the error fixed sampling reaches at each --target-spp (64 and 256: a
+// moderate and a clean image), read off each
 // method's error-time curve by interpolating between the two renders around
 // it on log-log axes (error falls as a power of time). speed-up = time of
 // fixed sampling with power selection / the method's time at that error.
@@ -55,7 +56,7 @@ namespace {
 struct Options {
     int width = 160, height = 120;
     int referenceSpp = 16384;
-    int targetSpp = 64;
+    std::vector<int> targetSpp{64, 256};  // --target-spp replaces them
     std::vector<int> fixedSpp{4, 8, 16, 32, 64, 128, 256};
     // Adaptive thresholds: fixed sampling's relRMSE at these sample counts
     // (a scene's noise per sample decides which thresholds make sense).
@@ -253,6 +254,7 @@ void writeSvg(const fs::path& file, const std::vector<Curve>& curves, const Opti
 
 Options parse(int argc, char** argv) {
     Options o;
+    bool targetGiven = false;
     const char* home = std::getenv("HOME");
     const char* xdg = std::getenv("XDG_CACHE_HOME");
     o.cache = fs::path(xdg ? xdg : (std::string(home ? home : "/tmp") + "/.cache")) / "strahl";
@@ -268,9 +270,11 @@ Options parse(int argc, char** argv) {
             o.height = std::stoi(next());
         else if (a == "--reference-spp")
             o.referenceSpp = std::stoi(next());
-        else if (a == "--target-spp")
-            o.targetSpp = std::stoi(next());
-        else if (a == "--cache")
+        else if (a == "--target-spp") {
+            if (!targetGiven) o.targetSpp.clear();
+            targetGiven = true;
+            o.targetSpp.push_back(std::stoi(next()));
+        } else if (a == "--cache")
             o.cache = next();
         else if (a == "--svg")
             o.svg = next();
@@ -280,9 +284,10 @@ Options parse(int argc, char** argv) {
             o.repeats = std::stoi(next());
         else
             fail("usage: bench_convergence [--width W] [--height H] [--reference-spp N] "
-                 "[--target-spp N] [--cache DIR] [--svg FILE] [--repeats N] [--scene NAME]...");
+                 "[--target-spp N]... [--cache DIR] [--svg FILE] [--repeats N] [--scene NAME]...");
     }
-    if (o.width < 1 || o.height < 1 || o.referenceSpp < 1 || o.targetSpp < 1 || o.repeats < 1)
+    if (o.width < 1 || o.height < 1 || o.referenceSpp < 1 || o.repeats < 1 ||
+        std::any_of(o.targetSpp.begin(), o.targetSpp.end(), [](int n) { return n < 1; }))
         fail("bench_convergence: sizes and sample counts must be >= 1");
     return o;
 }
@@ -326,9 +331,11 @@ int main(int argc, char** argv) try {
 
     const std::vector<std::string> size{"--width", std::to_string(o.width), "--height",
                                         std::to_string(o.height)};
+    std::string targets;
+    for (int n : o.targetSpp) targets += (targets.empty() ? "" : ", ") + std::to_string(n);
     std::printf("bench_convergence: %dx%d, relative RMSE against %d spp references (cached in "
-                "%s); target error: fixed sampling's at %d spp\n",
-                o.width, o.height, o.referenceSpp, references.c_str(), o.targetSpp);
+                "%s); target errors: fixed sampling's at %s spp\n",
+                o.width, o.height, o.referenceSpp, references.c_str(), targets.c_str());
     std::printf("%-8s %-12s %-8s %10s %9s %8s\n", "scene", "method", "setting", "mean spp",
                 "render s", "relRMSE");
     std::vector<Curve> curves;
@@ -406,24 +413,26 @@ int main(int argc, char** argv) try {
             sceneCurves.push_back(curve);
         }
         const Curve& fixed = sceneCurves.front();
-        const auto target = std::find_if(fixed.points.begin(), fixed.points.end(), [&](const Point& p) {
-            return p.samples == o.targetSpp;
-        });
-        if (target == fixed.points.end()) fail("--target-spp must be one of the fixed sample counts");
-        const double tFixed = timeToError(fixed, target->error);
-        std::printf("%-8s time to relRMSE %.4f: fixed %.3f s", s.name.c_str(), target->error, tFixed);
-        for (size_t k = 1; k < sceneCurves.size(); ++k) {
-            bool bound = false;
-            const double t = timeToError(sceneCurves[k], target->error, &bound);
-            if (t > 0.0 && bound)  // its cheapest render is already better: at least this fast
-                std::printf(", %s <= %.3f s (>= %.2fx)", sceneCurves[k].method.c_str(), t,
-                            tFixed / t);
-            else if (t > 0.0)
-                std::printf(", %s %.3f s (%.2fx)", sceneCurves[k].method.c_str(), t, tFixed / t);
-            else
-                std::printf(", %s does not reach it", sceneCurves[k].method.c_str());
+        for (int targetSpp : o.targetSpp) {
+            const auto target = std::find_if(fixed.points.begin(), fixed.points.end(),
+                                             [&](const Point& p) { return p.samples == targetSpp; });
+            if (target == fixed.points.end()) fail("--target-spp must be one of the fixed sample counts");
+            const double tFixed = timeToError(fixed, target->error);
+            std::printf("%-8s time to relRMSE %.4f (fixed %d spp): fixed %.3f s", s.name.c_str(),
+                        target->error, targetSpp, tFixed);
+            for (size_t k = 1; k < sceneCurves.size(); ++k) {
+                bool bound = false;
+                const double t = timeToError(sceneCurves[k], target->error, &bound);
+                if (t > 0.0 && bound)  // its cheapest render is already better: at least this fast
+                    std::printf(", %s <= %.3f s (>= %.2fx)", sceneCurves[k].method.c_str(), t,
+                                tFixed / t);
+                else if (t > 0.0)
+                    std::printf(", %s %.3f s (%.2fx)", sceneCurves[k].method.c_str(), t, tFixed / t);
+                else
+                    std::printf(", %s does not reach it", sceneCurves[k].method.c_str());
+            }
+            std::printf("\n");
         }
-        std::printf("\n");
         curves.insert(curves.end(), sceneCurves.begin(), sceneCurves.end());
     }
     if (!o.svg.empty()) {
