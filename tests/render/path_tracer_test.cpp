@@ -223,6 +223,17 @@ TEST(PathTracer, AMixedLampIsLightSampledWithoutBias) {
     const Image mixedFirst = renderText(roomScene(16, first), "mixed_first");
     const Image patterned = renderText(roomScene(16, kPatternedLamp), "patterned_16");
     EXPECT_EQ(mixedFirst.beauty, patterned.beauty);
+    // A mix of two constants is evaluated, not taken for its scale: light
+    // sampling and BSDF sampling agree on a lamp of (4 + 12) / 2 = 8.
+    const std::string constants = R"({ "mix": [4, 12], "amount": 0.5 })";
+    const Image cMis = renderText(roomScene(256, constants), "constants_mis", LightSampling::Mis);
+    const Image cLight = renderText(roomScene(256, constants), "constants_light", LightSampling::LightOnly);
+    const Image uniform = renderText(roomScene(256, kUniformLamp), "uniform_mis", LightSampling::Mis);
+    for (const Image* other : {&cLight, &uniform}) {
+        const Agreement a = compare(cMis, *other);
+        EXPECT_NEAR(a.meanA, a.meanB, 0.02 * a.meanA);
+        EXPECT_LT(a.outliers, 0.01);
+    }
 }
 
 // A patterned lamp is light-sampled too: light sampling reads the pattern at

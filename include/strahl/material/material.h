@@ -42,10 +42,11 @@ struct Material {
                             const Color& emitted = Color(0.0f));
 
     bool emits() const { return maxComponent(emission.value) > 0.0f; }
-    // Emission that does not vary over the surface (no texture): such
-    // triangles become area lights for next-event estimation.
+    // Emission that is its `value` everywhere (no texture, no mix — even a
+    // mix of constants is evaluated, not folded into the value): such
+    // triangles become area lights of that radiance.
     bool hasUniformEmission() const {
-        return emits() && !emission.varies();
+        return emits() && !emission.varies() && !emission.mix;
     }
     // Whether some of the surface may be a hole.
     bool cutsOut() const { return opacity.value < 1.0f || !opacity.texture.file.empty(); }
