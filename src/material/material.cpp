@@ -51,16 +51,20 @@ ShadingPoint shadingPointAt(const SurfaceInteraction& si, float footprint) {
     return sp;
 }
 
+// (1 − t) a + t b of a mix (ColorMix or FloatMix) at sp, each input through
+// `evaluate`; the input whose weight is 0 is not looked up (pbrt does the same).
+template <typename Mix, typename Evaluate>
+auto evaluateMix(const Mix& mix, const TextureMapping& mapping, const ShadingPoint& sp,
+                 const TextureSystem* textures, Evaluate evaluate) {
+    const float t = evaluateFloat(mix.amount, mapping, sp, textures);
+    if (t == 0.0f) return evaluate(mix.a, mapping, sp, textures);
+    if (t == 1.0f) return evaluate(mix.b, mapping, sp, textures);
+    return (1.0f - t) * evaluate(mix.a, mapping, sp, textures) + t * evaluate(mix.b, mapping, sp, textures);
+}
+
 Color evaluateColor(const TexturedColor& c, const TextureMapping& mapping, const ShadingPoint& sp,
                     const TextureSystem* textures) {
-    if (c.mix) {
-        const float t = evaluateFloat(c.mix->amount, mapping, sp, textures);
-        // The input that does not count is not looked up (pbrt does the same).
-        if (t == 0.0f) return c.value * evaluateColor(c.mix->a, mapping, sp, textures);
-        if (t == 1.0f) return c.value * evaluateColor(c.mix->b, mapping, sp, textures);
-        return c.value * ((1.0f - t) * evaluateColor(c.mix->a, mapping, sp, textures) +
-                          t * evaluateColor(c.mix->b, mapping, sp, textures));
-    }
+    if (c.mix) return c.value * evaluateMix(*c.mix, mapping, sp, textures, &evaluateColor);
     if (c.checkerboard) return c.value * c.checkerboard->at(sp.uv);
     if (!c.texture.meshAttribute.empty())
         return sp.attributes ? c.value * Color(sp.attributes->value(c.texture.meshAttribute)) : Color(0.0f);
@@ -70,13 +74,7 @@ Color evaluateColor(const TexturedColor& c, const TextureMapping& mapping, const
 
 float evaluateFloat(const TexturedFloat& f, const TextureMapping& mapping, const ShadingPoint& sp,
                     const TextureSystem* textures) {
-    if (f.mix) {
-        const float t = evaluateFloat(f.mix->amount, mapping, sp, textures);
-        if (t == 0.0f) return f.value * evaluateFloat(f.mix->a, mapping, sp, textures);
-        if (t == 1.0f) return f.value * evaluateFloat(f.mix->b, mapping, sp, textures);
-        return f.value * ((1.0f - t) * evaluateFloat(f.mix->a, mapping, sp, textures) +
-                          t * evaluateFloat(f.mix->b, mapping, sp, textures));
-    }
+    if (f.mix) return f.value * evaluateMix(*f.mix, mapping, sp, textures, &evaluateFloat);
     if (f.checkerboard) return f.value * f.checkerboard->at(sp.uv).r;
     if (!f.texture.meshAttribute.empty())
         return sp.attributes ? f.value * sp.attributes->value(f.texture.meshAttribute)[f.channel] : 0.0f;

@@ -9,6 +9,7 @@
 #include <optional>
 #include <utility>
 
+#include "strahl/core/srgb.h"
 #include "strahl/core/error.h"
 #include "text_scan.h"
 
@@ -109,10 +110,6 @@ std::vector<AttributeColumns> groupAttributes(const std::string& file, const Ele
     return groups;
 }
 
-// The sRGB transfer function's inverse (IEC 61966-2-1).
-float srgbToLinear(double v) {
-    return static_cast<float>(v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
-}
 
 }  // namespace
 
@@ -120,7 +117,7 @@ float attributeValue(double raw, Scalar type) {
     if (!isInteger(type)) return static_cast<float>(raw);
     const bool isSigned = type == Scalar::Int8 || type == Scalar::Int16 || type == Scalar::Int32;
     const double largest = std::ldexp(1.0, int(8 * sizeOf(type)) - (isSigned ? 1 : 0)) - 1.0;
-    return srgbToLinear(std::clamp(raw / largest, 0.0, 1.0));
+    return static_cast<float>(srgbToLinear(std::clamp(raw / largest, 0.0, 1.0)));
 }
 
 std::vector<MeshAttribute> makeAttributes(const Layout& layout) {

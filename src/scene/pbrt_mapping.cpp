@@ -4,6 +4,7 @@
 #include "pbrt_mapping.h"
 
 #include "image_reader.h"
+#include "strahl/core/srgb.h"
 #include "strahl/core/equal_area.h"
 
 #include <algorithm>
@@ -66,10 +67,7 @@ double upperHemisphereIlluminance(const std::filesystem::path& file) {
 double meanImageLuminance(const std::filesystem::path& file) {
     const FloatImage image = readFloatImage(file, "area light image", size_t(1) << 28);
     const auto linear = [&](float v) {
-        if (!image.integer) return double(v);
-        // The sRGB EOTF (IEC 61966-2-1), as the texture system applies it.
-        const double c = std::clamp(double(v), 0.0, 1.0);
-        return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+        return image.integer ? srgbToLinear(std::clamp(double(v), 0.0, 1.0)) : double(v);
     };
     double sum = 0.0;
     const size_t pixels = size_t(image.width) * size_t(image.height);

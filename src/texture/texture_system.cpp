@@ -1,6 +1,7 @@
 // Image textures through a private OpenImageIO TextureSystem (see
 // texture_system.h and docs/textures.md).
 
+#include "strahl/core/srgb.h"
 #include "strahl/texture/texture_system.h"
 
 #include <OpenImageIO/imageio.h>
@@ -40,11 +41,6 @@ constexpr float kMaxFootprint = 1.0f;
 // the others renormalised: at most 0.1% of the texture's range is lost, and an
 // axis-aligned face costs one lookup instead of three.
 constexpr float kMinTriplanarWeight = 1e-3f;
-
-// The sRGB EOTF (IEC 61966-2-1): code value in [0, 1] to linear.
-float srgbToLinear(float c) {
-    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
 
 // OIIO's messages may span lines and end in a newline; keep them on one line.
 std::string oneLine(std::string message) {
