@@ -114,6 +114,17 @@ for t in "${targets[@]}"; do
     result="$kind: ${found[*]:-no artifact}; log $logs/$t.log"
   fi
   printf '%-16s %10s runs  %s\n' "$t" "${runs:-?}" "$result"
+  if [ "$result" != "clean" ]; then
+    # The report and the input, so that a failure on a CI machine (whose
+    # build folder is gone afterwards) can be reproduced from its log alone.
+    echo "---- $t: the report (from the first error line, at most 40 lines) ----"
+    sed -n '/ERROR\|runtime error:\|terminate called\|what():/,$p' "$logs/$t.log" | head -n 40
+    for f in "${found[@]}"; do
+      echo "---- $t: $(basename "$f") ($(stat -c %s "$f") bytes), base64 (first 8 KiB) ----"
+      head -c 8192 "$f" | base64
+    done
+    echo "---- end of $t ----"
+  fi
 done
 echo "fuzz: $((SECONDS - start)) s in all, build included"
 echo "fuzz: ${#targets[@]} targets, $clean clean"

@@ -15,7 +15,8 @@ namespace strahl::app {
 int runConvert(const Options& o) {
     const std::filesystem::path out = o.convertOutput;
     const std::filesystem::path folder = out.parent_path().empty() ? "." : out.parent_path();
-    if (!std::filesystem::is_directory(folder))
+    std::error_code ec;
+    if (!std::filesystem::is_directory(folder, ec))
         fail(out.string(), ": cannot write: folder '", folder.string(), "' does not exist");
     const SceneDocument document = patchedScene(o);
     document.parse();  // what would not render is an error now, not when it is rendered

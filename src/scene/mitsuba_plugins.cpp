@@ -176,16 +176,17 @@ private:
         const std::string given = text(o, "filename", "");
         if (given.empty()) unsupported(o, "needs a <string name=\"filename\">");
         fs::path found = fs::path(given);
+        std::error_code ec;  // a name the file system refuses (too long) is found nowhere
         if (found.is_relative()) {
             found = o.folder / given;
             for (const fs::path& folder : scene_.searchPath)
-                if (fs::exists(folder / given)) {
+                if (fs::exists(folder / given, ec)) {
                     found = folder / given;
                     break;
                 }
         }
-        found = fs::absolute(found);
-        if (!fs::exists(found))
+        found = fs::absolute(found, ec);
+        if (!fs::exists(found, ec))
             fail(o.property("filename")->place.text(), ": ", o.element(), ": no ", name, " '",
                  given, "' (looked in the <path> folders and the scene's)");
         const fs::path relative = found.lexically_normal().lexically_relative(folder_);

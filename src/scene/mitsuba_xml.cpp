@@ -14,6 +14,7 @@
 #include <set>
 #include <sstream>
 
+#include "file_identity.h"
 #include "strahl/core/error.h"
 
 namespace strahl::scene_detail::mitsuba {
@@ -107,7 +108,7 @@ public:
         scene->tag = "scene";
         scene->place = place;
         scene->folder = source.folder;
-        including_.push_back(fs::weakly_canonical(file));
+        including_.push_back(fileIdentity(file));
         readChildren(root, source, *scene);
         for (const std::string& name : defined_)
             if (!used_.count(name))
@@ -354,8 +355,9 @@ private:
     fs::path resolve(const std::string& name, const Source& source) const {
         std::vector<fs::path> folders = {sceneFolder_};
         folders.insert(folders.end(), searchPath_.begin(), searchPath_.end());
+        std::error_code ec;  // a name the file system refuses (too long) is found nowhere
         for (const fs::path& folder : folders)
-            if (fs::exists(folder / name)) return folder / name;
+            if (fs::exists(folder / name, ec)) return folder / name;
         return source.folder / name;
     }
 
@@ -386,7 +388,7 @@ private:
                  Object& scene) {
         const std::string name = attribute(node, "filename", place);
         const fs::path file = resolve(name, source);
-        const fs::path canonical = fs::weakly_canonical(file);
+        const fs::path canonical = fileIdentity(file);
         if (std::find(including_.begin(), including_.end(), canonical) != including_.end())
             fail(place.text(), ": <include filename=\"", name, "\">: includes itself (a cycle)");
         if (including_.size() >= kMaxIncludeDepth)

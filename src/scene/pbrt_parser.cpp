@@ -16,6 +16,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "file_identity.h"
 #include "strahl/core/error.h"
 #include "strahl/meshio/mesh_file.h"
 
@@ -181,7 +182,7 @@ public:
     }
 
     void parseFile(std::string_view text, const std::string& label, const fs::path& path, int depth) {
-        const fs::path canonical = fs::weakly_canonical(fs::absolute(path));
+        const fs::path canonical = fileIdentity(path);
         openFiles_.insert(canonical);
         Tokenizer tokens(text, label);
         while (std::optional<Token> t = tokens.next()) directive(tokens, *t, depth);
@@ -394,12 +395,15 @@ private:
         const std::string name = needString(tokens, t);
         if (depth + 1 > kMaxIncludeDepth) error(tokens, t, "Include: nested deeper than 32 files");
         const fs::path path = fs::path(name).is_absolute() ? fs::path(name) : scene_.folder / name;
-        if (openFiles_.count(fs::weakly_canonical(fs::absolute(path))))
+        if (openFiles_.count(fileIdentity(path)))
             error(tokens, t, std::string(t.text) + " \"" + name + "\": the file includes itself (a cycle)");
         std::error_code ec;
         if (!fs::is_regular_file(path, ec))
-            error(tokens, t, std::string(t.text) + " \"" + name + "\": cannot open " + path.string() +
-                                 (fs::exists(path, ec) ? " (not a regular file)" : " (no such file)"));
+            error(tokens, t, std::string(t.text) + " \"" + name + "\": cannot open " + path.string() + " (" +
+                                 (ec && ec != std::errc::no_such_file_or_directory ? ec.message()
+                                  : fs::exists(path, ec)                           ? "not a regular file"
+                                                                                   : "no such file") +
+                                 ")");
         if (name.size() > 3 && name.substr(name.size() - 3) == ".gz")
             error(tokens, t, std::string(t.text) + " \"" + name + "\": compressed scene files are not supported");
         // Tokenized in place from a memory map: an included geometry file of

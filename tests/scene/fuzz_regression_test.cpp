@@ -134,6 +134,19 @@ TEST(FuzzRegressionInputs, APbrtIndexBeyondEveryIntegerTypeIsAnError) {
                                "\"integer indices\": index 3.33333e+29 is out of range (3 points)"));
 }
 
+// An included file name longer than the file system allows made the include-
+// cycle check (std::filesystem::weakly_canonical) throw std::filesystem_error,
+// which ended the process; it is now the include's own clear error.
+TEST(FuzzRegressionInputs, AnIncludedNameTooLongForTheFileSystemIsAnError) {
+    const fs::path dir = test::sourceDir() / "tests/data/fuzz";
+    const std::string pbrt = replay(targetNamed("fuzz_pbrt"), dir / "fuzz_pbrt/include_name_too_long.pbrt");
+    EXPECT_TRUE(test::contains(pbrt, "scene.pbrt:1: Include \"aaaa")) << pbrt;
+    EXPECT_TRUE(test::contains(pbrt, "(File name too long)")) << pbrt;
+    const std::string xml =
+        replay(targetNamed("fuzz_mitsuba_xml"), dir / "fuzz_mitsuba_xml/include_name_too_long.xml");
+    EXPECT_TRUE(test::contains(xml, "scene.xml:2")) << xml;
+}
+
 INSTANTIATE_TEST_SUITE_P(Targets, FuzzRegression, testing::ValuesIn(kTargets),
                          [](const testing::TestParamInfo<FuzzTarget>& target) {
                              return std::string(target.param.name);
