@@ -50,9 +50,11 @@ LightSet::LightSet(std::vector<Light> lights, const Bounds3& sceneBounds, LightS
                    const std::vector<uint32_t>& emitterOf)
     : lights_(std::move(lights)), selection_(selection) {
     if (selection_ == LightSelection::Auto) {
-        const auto finite = std::count_if(lights_.begin(), lights_.end(),
-                                          [](const Light& l) { return !l.isInfinite(); });
-        selection_ = size_t(finite) > kAutoBvhLights ? LightSelection::Bvh : LightSelection::Power;
+        const auto infinite = size_t(std::count_if(lights_.begin(), lights_.end(),
+                                                   [](const Light& l) { return l.isInfinite(); }));
+        const size_t finite = lights_.size() - infinite;
+        selection_ = finite > kAutoBvhLights || infinite >= kAutoBvhInfiniteLights ? LightSelection::Bvh
+                                                                                  : LightSelection::Power;
     }
     if (lights_.empty()) return;
     if (lights_.size() > UINT32_MAX) fail("too many lights: ", lights_.size());

@@ -86,6 +86,24 @@ TEST(LightBvh, AutoSelectionTakesTheTreeAboveSixteenFiniteLights) {
               LightSelection::Bvh);
 }
 
+// Two infinite lights (a sun and a sky) take the tree, which chooses each as
+// often (pbrt-v4's rule) however their powers compare; one does not.
+TEST(LightBvh, AutoSelectionTakesTheTreeForTwoInfiniteLights) {
+    DirectionalLight sun;
+    sun.direction = Vec3(0, -1, 0);
+    sun.irradiance = Color(100.0f);
+    SkyLight sky;
+    std::vector<Light> lights{sky, point(Vec3(0, 1, 0), 1.0f)};
+    EXPECT_EQ(LightSet(lights, box(), LightSelection::Auto, {0, 1}).selection(), LightSelection::Power);
+    lights.push_back(sun);
+    const LightSet set(lights, box(), LightSelection::Auto, {0, 1, 2});
+    ASSERT_EQ(set.selection(), LightSelection::Bvh);
+    const LightSampleContext receiver = at(Vec3(0.0f), Vec3(0, 1, 0));
+    EXPECT_NEAR(set.pmf(0, receiver), 1.0f / 3.0f, 1e-6f);  // the sky
+    EXPECT_NEAR(set.pmf(2, receiver), 1.0f / 3.0f, 1e-6f);  // the sun, 100x brighter
+    EXPECT_NEAR(set.pmf(1, receiver), 1.0f / 3.0f, 1e-6f);  // the tree, its only light
+}
+
 TEST(LightBvh, TheDistributionSumsToOneAndChooseFollowsIt) {
     Pcg32 rng(7, 1);
     std::vector<Light> lights;

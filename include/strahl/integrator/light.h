@@ -83,14 +83,21 @@ float lightPower(const Light& light, const Bounds3& sceneBounds);
 // the scene, the sky, an emitting shape as a whole) equally often and, within
 // an emitting shape, its triangles in proportion to their power (Mitsuba's
 // choice).
-// Auto is the BVH for scenes with more than kAutoBvhLights finite lights,
-// else power: with a few lights the tree's cost per choice (two importances
-// per level) outweighs what it saves (bench_convergence: the Cornell box's
-// two emissive triangles take 1.2x the time with it). Power is the default:
-// even on the 1600-lamp room the tree's cost per choice still outweighs its
-// lower variance at moderate errors (bench/RESULTS.md).
+// Auto, the default, is the BVH for scenes with more than kAutoBvhLights
+// finite lights or with two infinite lights or more, else power:
+//  - with a few finite lights the tree's cost per choice (two importances per
+//    level) outweighs what it saves (bench_convergence: the Cornell box's two
+//    emissive triangles take up to 1.2x the time with it); with 1600 lamps it
+//    pays (1.2x sooner to fixed sampling's 64-spp error, bench/RESULTS.md);
+//  - infinite lights: power weighs a sun against a sky by their powers, so the
+//    sky gets few samples even where the sun is blocked, which in an interior
+//    is almost everywhere; the tree takes each infinite light as often as the
+//    whole tree (pbrt-v4's rule), whose variance from the choice is at most
+//    the square of the lights' difference (Sponza under sun and sky: 1.66x
+//    sooner to fixed sampling's 64-spp error).
 enum class LightSelection { Auto, Bvh, Power, UniformEmitters };
 inline constexpr size_t kAutoBvhLights = 16;
+inline constexpr size_t kAutoBvhInfiniteLights = 2;
 
 // The lights of a scene and the discrete distribution that picks one per
 // next-event estimate (uniform if every power is 0).
