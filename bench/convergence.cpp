@@ -31,6 +31,19 @@
 // by 1600 small lamps (3200 emissive triangles, written by the benchmark).
 // --svg FILE draws the curves, one panel per scene
 // (docs/images/convergence.svg).
+//
+// On the sphere scene, Embree's own `pathtracer` tutorial (Debian
+// embree-tools) gets a curve too, when bench/peer_embree_tutorials.sh has
+// cached the scene and its arguments for the tutorial and `pathtracer` and
+// `strace` are installed: the tutorial at 4, 8, ... spp (same size, camera,
+// light and path length), its render time read from its system calls as that
+// script does. The tutorial writes only 8-bit images (its frame buffer is
+// linear RGBA8: floor(255.01 clamp(x))), so this comparison quantises
+// strahl's renders and the reference the same way and measures relRMSE on
+// the quantised values ("relRMSE8"): equal footing, same truncation. Printed:
+// the time each needs to reach strahl's fixed-sampling relRMSE8 at each
+// target spp, and the ratio pathtracer time / strahl time (> 1: strahl is
+// sooner).
 
 #include <unistd.h>
 
@@ -81,6 +94,7 @@ struct Point {
     std::string setting;  // "16 spp" or "t 0.02"
     double seconds = 0.0;
     double error = 0.0;  // relRMSE
+    double error8 = 0.0;  // relRMSE8: image and reference quantised as the tutorial's output
     double samples = 0.0;  // mean samples per pixel
 };
 
@@ -166,12 +180,9 @@ double relativeRmse(const std::vector<float>& image, const std::vector<float>& r
 }
 
 // The time `curve` needs to reach `error`, interpolated on log-log axes
-// between the two points around it; negative if the curve never gets there.
-// The time `curve` needs to reach `error`, interpolated on log-log axes
 // between the renders around it. If its cheapest render is already below
 // `error`, that render's time: an upper bound (*bound is set). -1: never.
-double timeToError(const Curve& curve, double error, bool* bound = nullptr) {
-    const std::vector<Point>& p = curve.points;
+double timeToError(std::vector<Point> p, double error, bool* bound = nullptr) {
     if (bound) *bound = !p.empty() && p.front().error <= error;
     for (size_t i = 1; i < p.size(); ++i) {
         if (p[i].error > error) continue;
@@ -181,6 +192,67 @@ double timeToError(const Curve& curve, double error, bool* bound = nullptr) {
                         f * (std::log(p[i].seconds) - std::log(p[i - 1].seconds)));
     }
     return p.empty() || p.front().error > error ? -1.0 : p.front().seconds;
+}
+double timeToError(const Curve& curve, double error, bool* bound = nullptr) {
+    return timeToError(curve.points, error, bound);
+}
+// The same on the curve's relRMSE8.
+double timeToError8(const Curve& curve, double error, bool* bound = nullptr) {
+    std::vector<Point> p = curve.points;
+    for (Point& q : p) q.error = q.error8;
+    return timeToError(p, error, bound);
+}
+
+// The 8-bit value Embree's tutorials write for a linear value (their frame
+// buffer: unsigned(255.01 clamp(x, 0, 1)) per channel), as a fraction of 255.
+std::vector<float> quantise8(std::vector<float> image) {
+    for (float& x : image) x = std::floor(255.01f * std::clamp(x, 0.0f, 1.0f)) / 255.0f;
+    return image;
+}
+
+// Runs `command` through the shell; throws with `what` if it fails.
+void run(const std::string& command, const std::string& what) {
+    if (std::system(command.c_str()) != 0) fail(what, " failed: ", command);
+}
+
+bool onPath(const std::string& program) {
+    return std::system(("command -v " + program + " >/dev/null 2>&1").c_str()) == 0;
+}
+
+// One render of Embree's `pathtracer` tutorial: its arguments (camera, light,
+// path length, from the cache), `spp`, the size; writes `out` (PFM) and
+// returns its render time. The tutorial prints no render time: it is read
+// from its system calls (strace, filtered in the kernel so the rendering
+// threads are not slowed), from the line "  accels[0]" that --verbose 2
+// prints once the BVH is built to the opening of the output image right
+// after the frame (bench/peer_embree_tutorials.sh does the same).
+double runPathtracer(const std::vector<std::string>& args, int spp, const Options& o,
+                     const fs::path& out, const fs::path& work) {
+    const fs::path trace = work / "pathtracer.trace", log = work / "pathtracer.log";
+    std::string command = "strace -f --seccomp-bpf -ttt -e trace=openat,write -o '" +
+                          trace.string() + "' stdbuf -oL pathtracer";
+    for (const std::string& a : args) command += " '" + a + "'";
+    command += " --spp " + std::to_string(spp) + " --size " + std::to_string(o.width) + " " +
+               std::to_string(o.height) + " --verbose 2 -o '" + out.string() + "' >'" +
+               log.string() + "' 2>&1";
+    run(command, "pathtracer");
+    std::ifstream in(trace);
+    std::string line, quotedOut = "\"";
+    quotedOut += out.string();
+    quotedOut += '"';
+    double built = 0.0, written = 0.0;
+    while (std::getline(in, line)) {
+        std::istringstream fields(line);
+        std::string pid;
+        double when = 0.0;
+        if (!(fields >> pid >> when)) continue;
+        if (built == 0.0 && line.find("write(1, \"  accels[0]") != std::string::npos) built = when;
+        if (line.find("openat(") != std::string::npos &&
+            line.find(quotedOut) != std::string::npos)
+            written = when;
+    }
+    if (built == 0.0 || written <= built) fail("pathtracer: no render interval in ", trace.string());
+    return written - built;
 }
 
 // Log-log plots of the curves, one panel per scene, one colour per method.
@@ -194,7 +266,7 @@ void writeSvg(const fs::path& file, const std::vector<Curve>& curves, const Opti
     out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\""
         << top + height + 90 << "\" font-family=\"sans-serif\" font-size=\"11\">\n"
         << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-    const char* colours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd"};
+    const char* colours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e"};
     for (size_t si = 0; si < scenes.size(); ++si) {
         double tMin = 1e30, tMax = 0.0, eMin = 1e30, eMax = 0.0;
         for (const Curve& c : curves)
@@ -239,12 +311,15 @@ void writeSvg(const fs::path& file, const std::vector<Curve>& curves, const Opti
     // The legend and the axes' meaning, under the panels.
     double lx = left0;
     const double ly = top + height + 40;
-    for (size_t mi = 0; mi < std::size(kMethods); ++mi) {
+    std::vector<std::string> legend;
+    for (const Method& m : kMethods) legend.push_back(m.name);
+    for (const Curve& c : curves)
+        if (std::find(legend.begin(), legend.end(), c.method) == legend.end()) legend.push_back(c.method);
+    for (size_t mi = 0; mi < legend.size(); ++mi) {
         out << "<line x1=\"" << lx << "\" y1=\"" << ly << "\" x2=\"" << lx + 24 << "\" y2=\"" << ly
-            << "\" stroke=\"" << colours[mi] << "\" stroke-width=\"2\"/>\n"
-            << "<text x=\"" << lx + 30 << "\" y=\"" << ly + 4 << "\">" << kMethods[mi].name
-            << "</text>\n";
-        lx += 140;
+            << "\" stroke=\"" << colours[mi % std::size(colours)] << "\" stroke-width=\"2\"/>\n"
+            << "<text x=\"" << lx + 30 << "\" y=\"" << ly + 4 << "\">" << legend[mi] << "</text>\n";
+        lx += legend[mi].size() > 14 ? 230 : 140;
     }
     out << "<text x=\"" << left0 << "\" y=\"" << ly + 26 << "\">x: render time (s), y: relative RMSE "
         << "against " << o.referenceSpp << " spp; " << o.width << "x" << o.height
@@ -306,8 +381,22 @@ int main(int argc, char** argv) try {
 
     std::vector<BenchScene> scenes;
     const fs::path peerSphere = o.cache / "peer_embree/sphere_scene.json";
+    // The tutorial's arguments for the same scene, one per line (written by
+    // bench/peer_embree_tutorials.sh next to the scene).
+    std::vector<std::string> pathtracerArgs;
     if (fs::exists(peerSphere)) {
         scenes.push_back({"sphere", peerSphere});
+        std::ifstream in(o.cache / "peer_embree/sphere_scene.pathtracer-args");
+        for (std::string line; std::getline(in, line);)
+            if (!line.empty()) pathtracerArgs.push_back(line);
+        if (pathtracerArgs.empty())
+            std::printf("sphere: no curve for Embree's pathtracer: its arguments are not cached "
+                        "(run bench/peer_embree_tutorials.sh once)\n");
+        else if (!onPath("pathtracer") || !onPath("strace")) {
+            std::printf("sphere: no curve for Embree's pathtracer: `pathtracer` or `strace` is not "
+                        "installed (scripts/setup.sh installs both)\n");
+            pathtracerArgs.clear();
+        }
     } else {
         std::printf("sphere: the 2M-triangle OBJ of bench/peer_embree_tutorials.sh is not cached "
                     "(run that script once); an implicit sphere stands in\n");
@@ -354,6 +443,7 @@ int main(int argc, char** argv) try {
             fs::copy_file(partial, reference, fs::copy_options::overwrite_existing);
         }
         const std::vector<float> ref = bench::rgb(bench::readChannels(reference), "");
+        const std::vector<float> ref8 = quantise8(ref);
 
         const auto measure = [&](const std::string& setting, std::vector<std::string> args) {
             args.insert(args.begin(), size.begin(), size.end());
@@ -367,6 +457,7 @@ int main(int argc, char** argv) try {
             p.seconds = times[times.size() / 2];
             const bench::Channels c = bench::readChannels(out);
             p.error = relativeRmse(bench::rgb(c, ""), ref);
+            p.error8 = relativeRmse(quantise8(bench::rgb(c, "")), ref8);
             const auto count = c.find("samples.X");
             p.samples = count != c.end() ? mean(count->second) : 0.0;  // fixed: set by the caller
             return p;
@@ -432,6 +523,56 @@ int main(int argc, char** argv) try {
                     std::printf(", %s does not reach it", sceneCurves[k].method.c_str());
             }
             std::printf("\n");
+        }
+        if (s.name == "sphere" && !pathtracerArgs.empty()) {
+            // Embree's tutorial, doubling its spp until it is below the
+            // smallest target relRMSE8 (at most 4096 spp).
+            double lowest = 1e30;
+            for (int targetSpp : o.targetSpp)
+                for (const Point& p : fixed.points)
+                    if (p.samples == targetSpp) lowest = std::min(lowest, p.error8);
+            Curve peer{s.name, "embree pathtracer (8-bit)", {}};
+            for (int spp = 4; spp <= 4096; spp *= 2) {
+                const fs::path out = work / "pathtracer.pfm";
+                std::vector<double> times;
+                for (int r = 0; r < o.repeats; ++r)
+                    times.push_back(runPathtracer(pathtracerArgs, spp, o, out, work));
+                std::sort(times.begin(), times.end());
+                Point p;
+                p.setting = std::to_string(spp) + " spp";
+                p.samples = spp;
+                p.seconds = times[times.size() / 2];
+                // Its output is already 8-bit; quantise8 keeps each value.
+                p.error = p.error8 = relativeRmse(quantise8(bench::rgb(bench::readChannels(out), "")), ref8);
+                peer.points.push_back(p);
+                std::printf("%-8s %-12s %-8s %10.1f %9.3f %8.4f (relRMSE8)\n", s.name.c_str(),
+                            "pathtracer", p.setting.c_str(), p.samples, p.seconds, p.error8);
+                if (p.error8 < lowest) break;
+            }
+            for (int targetSpp : o.targetSpp) {
+                const auto target = std::find_if(fixed.points.begin(), fixed.points.end(),
+                                                 [&](const Point& p) { return p.samples == targetSpp; });
+                const double e = target->error8;
+                std::printf("%-8s time to relRMSE8 %.4f (strahl fixed %d spp, 8-bit):", s.name.c_str(), e,
+                            targetSpp);
+                const double tPeer = timeToError8(peer, e);
+                for (const Curve& c : sceneCurves) {
+                    bool bound = false;
+                    const double t = timeToError8(c, e, &bound);
+                    if (t <= 0.0)
+                        std::printf(" strahl %s does not reach it,", c.method.c_str());
+                    else if (tPeer > 0.0)
+                        std::printf(" strahl %s %s%.3f s (pathtracer/strahl %s%.2fx),", c.method.c_str(),
+                                    bound ? "<= " : "", t, bound ? ">= " : "", tPeer / t);
+                    else
+                        std::printf(" strahl %s %s%.3f s,", c.method.c_str(), bound ? "<= " : "", t);
+                }
+                if (tPeer > 0.0)
+                    std::printf(" embree pathtracer %.3f s\n", tPeer);
+                else
+                    std::printf(" embree pathtracer does not reach it within 4096 spp\n");
+            }
+            sceneCurves.push_back(peer);
         }
         curves.insert(curves.end(), sceneCurves.begin(), sceneCurves.end());
     }

@@ -115,6 +115,13 @@ cat >"$cache/sphere_scene.json" <<EOF
 }
 EOF
 
+# The pathtracer's arguments for this scene (camera, light, path length), one
+# per line: bench_convergence runs the tutorial with them for its sphere-scene
+# curve.
+printf '%s\n' -i "$obj" --vp "${eye[@]}" --vi "${at[@]}" --vu "${up[@]}" --fov "$fov" \
+  --pointlight "${light[@]}" "$intensity" "$intensity" "$intensity" --max-path-length 5 \
+  >"$cache/sphere_scene.pathtracer-args"
+
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 embree_camera=(--vp "${eye[@]}" --vi "${at[@]}" --vu "${up[@]}" --fov "$fov" --threads "$threads")
