@@ -102,7 +102,8 @@ public:
     Sampler(uint64_t seed, int px, int py, uint32_t sampleIndex)
         : pixelHash_(mixBits(seed ^ mixBits((static_cast<uint64_t>(static_cast<uint32_t>(py)) << 32) |
                                             static_cast<uint32_t>(px)))),
-          index_(sampleIndex) {}
+          index_(sampleIndex),
+          reversedIndex_(sobol::reverseBits(sampleIndex)) {}
 
     // The next dimension (a pair is used for it; the second half is dropped so
     // that 1D and 2D requests stay aligned to pairs).
@@ -122,17 +123,26 @@ public:
                         sobol::dimension1(i), static_cast<uint32_t>(h2))));
     }
 
+    // Skips the next pair of dimensions without drawing it, for a consumer
+    // that would not use its values (a pinhole camera's lens sample). Each
+    // pair's values depend only on its position, so the pairs after it are
+    // those that drawing it would have given.
+    void skip2D() { ++pair_; }
+
     uint32_t sampleIndex() const { return index_; }
     uint32_t dimension() const { return pair_; }  // pairs drawn so far
 
 private:
     uint64_t pairHash() { return mixBits(pixelHash_ + 0x9E3779B97F4A7C15ULL * ++pair_); }
+    // nestedUniformScramble(index_, h), with the index's bit reversal done once
+    // per sample instead of once per pair.
     uint32_t shuffledIndex(uint64_t h) const {
-        return sobol::nestedUniformScramble(index_, static_cast<uint32_t>(h));
+        return sobol::reverseBits(sobol::laineKarrasPermutation(reversedIndex_, static_cast<uint32_t>(h)));
     }
 
     uint64_t pixelHash_ = 0;
     uint32_t index_ = 0;
+    uint32_t reversedIndex_ = 0;  // sobol::reverseBits(index_)
     uint32_t pair_ = 0;
 };
 
