@@ -321,6 +321,28 @@ TEST(TileRayGenerator, OneSampleGoesThroughPixelCentres) {
     expectNear(r.dir, expected.dir);
 }
 
+// The camera takes the first two pairs (filter offset, lens point) whether it
+// draws them or, where their values would not be used (one sample per pixel,
+// a pinhole), skips them: the integrator's dimensions start at pair 2 and are
+// the same either way.
+TEST(TileRayGenerator, TheIntegratorsDimensionsStartAfterTheCamerasTwoPairs) {
+    const Camera pinhole(obliqueFrame(), Projection::Perspective, ImageWindow{}, 1.0f, 9, 7);
+    ThinLens thin;
+    thin.apertureRadius = 0.1f;
+    const Camera lens(obliqueFrame(), Projection::Perspective, ImageWindow{}, 1.0f, 9, 7, thin);
+    for (const Camera* cam : {&pinhole, &lens})
+        for (int spp : {1, 4}) {
+            const TileRayGenerator gen(*cam, 42, spp);
+            Sampler sampler;
+            gen.sampleRay(3, 5, 0, sampler);
+            EXPECT_EQ(sampler.dimension(), 2u);
+            Sampler reference(42, 3, 5, 0);
+            reference.get2D();
+            reference.get2D();
+            EXPECT_EQ(sampler.get2D(), reference.get2D());
+        }
+}
+
 TEST(TileRayGenerator, JitterIsDeterministicAndInsideThePixel) {
     const Camera cam(CameraFrame{}, Projection::Orthographic, ImageWindow{}, 1.0f, 8, 8);
     const TileRayGenerator gen(cam, 7, 4);

@@ -92,6 +92,21 @@ TEST(Sampler, ValuesDependOnlyOnSeedPixelIndexAndDimension) {
     EXPECT_NE(Sampler(11, 100, 200, 18).get2D(), Sampler(11, 100, 200, 17).get2D());
 }
 
+// A consumer that does not use a pair skips it (a pinhole's lens sample): the
+// pairs after it are those that drawing it would have given.
+TEST(Sampler, SkippingAPairGivesTheLaterPairsOfDrawingIt) {
+    for (uint32_t index : {0u, 1u, 17u, 1000u}) {
+        Sampler drawn(3, 5, 8, index), skipped(3, 5, 8, index);
+        drawn.get2D();
+        skipped.skip2D();
+        EXPECT_EQ(skipped.dimension(), drawn.dimension());
+        EXPECT_EQ(skipped.get2D(), drawn.get2D()) << index;
+        drawn.get1D();
+        skipped.skip2D();
+        EXPECT_EQ(skipped.get1D(), drawn.get1D()) << index;
+    }
+}
+
 TEST(Sampler, PairsAreDecorrelated) {
     // The correlation between the first coordinates of two pairs over many
     // samples is near zero (without the index shuffle every pair would be
