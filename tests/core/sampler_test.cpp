@@ -51,6 +51,24 @@ TEST(Sampler, ShortcutFirstDimensionScrambleEqualsTheDefinition) {
     }
 }
 
+TEST(Sampler, BitReversalAndTheReversedTableEqualTheDefinitions) {
+    const auto reversedBitByBit = [](uint32_t x) {
+        uint32_t r = 0;
+        for (int b = 0; b < 32; ++b) r |= ((x >> b) & 1u) << (31 - b);
+        return r;
+    };
+    uint64_t state = 9;
+    for (int i = 0; i < 100000; ++i) {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        const auto index = static_cast<uint32_t>(state >> 32);
+        const auto seed = static_cast<uint32_t>(state);
+        ASSERT_EQ(sobol::reverseBits(index), reversedBitByBit(index)) << index;
+        ASSERT_EQ(sobol::scrambledDimension1(index, seed),
+                  sobol::nestedUniformScramble(sobol::dimension1(index), seed))
+            << index << " " << seed;
+    }
+}
+
 TEST(Sampler, EveryPairIsA02NetForPowersOfTwo) {
     // 2^m consecutive samples put exactly one point in every elementary
     // interval of area 2^-m, for every shape 2^a x 2^b with a + b = m.

@@ -22,12 +22,13 @@ namespace strahl {
 
 namespace sobol {
 
+// The bits within each byte reversed, then the bytes by one byte swap (an
+// instruction), instead of two more swap steps.
 constexpr uint32_t reverseBits(uint32_t x) {
     x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
     x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
     x = ((x >> 4) & 0x0F0F0F0Fu) | ((x & 0x0F0F0F0Fu) << 4);
-    x = ((x >> 8) & 0x00FF00FFu) | ((x & 0x00FF00FFu) << 8);
-    return (x >> 16) | (x << 16);
+    return __builtin_bswap32(x);
 }
 
 // Burley's improved Laine-Karras hash: a random permutation of the integers
@@ -72,23 +73,37 @@ constexpr uint32_t dimension1BitByBit(uint32_t index) {
 // T[3][byte 3], with T[k][b] = dimension1BitByBit(b << 8k). Four loads and
 // three XORs instead of a loop of up to 32 iterations with an unpredictable
 // branch each (the index is scrambled, so its bits are random): the loop was
-// the largest cost of eyelight rendering (issue 20). 4 KiB, built at compile
+// the largest cost of eyelight rendering (issue 20). 4 KiB (8 with the reversed copy below), built at compile
 // time; the values are identical bit for bit.
 struct Dimension1Table {
     uint32_t byByte[4][256];
 };
-constexpr Dimension1Table makeDimension1Table() {
+// reversed: the same table with every entry bit-reversed. Bit reversal is
+// linear over XOR, so it gives reverseBits(dimension1(i)), the form the Owen
+// scramble starts from, without reversing at run time.
+constexpr Dimension1Table makeDimension1Table(bool reversed) {
     Dimension1Table t{};
     for (uint32_t k = 0; k < 4; ++k)
-        for (uint32_t b = 0; b < 256; ++b) t.byByte[k][b] = dimension1BitByBit(b << (8 * k));
+        for (uint32_t b = 0; b < 256; ++b) {
+            const uint32_t column = dimension1BitByBit(b << (8 * k));
+            t.byByte[k][b] = reversed ? reverseBits(column) : column;
+        }
     return t;
 }
-inline constexpr Dimension1Table kDimension1Table = makeDimension1Table();
+inline constexpr Dimension1Table kDimension1Table = makeDimension1Table(false);
+inline constexpr Dimension1Table kReversedDimension1Table = makeDimension1Table(true);
 
-constexpr uint32_t dimension1(uint32_t index) {
-    const auto& t = kDimension1Table.byByte;
+constexpr uint32_t byTable(const Dimension1Table& table, uint32_t index) {
+    const auto& t = table.byByte;
     return t[0][index & 0xFFu] ^ t[1][(index >> 8) & 0xFFu] ^ t[2][(index >> 16) & 0xFFu] ^
            t[3][index >> 24];
+}
+constexpr uint32_t dimension1(uint32_t index) { return byTable(kDimension1Table, index); }
+
+// nestedUniformScramble(dimension1(index), seed), its first bit reversal
+// taken from the reversed table.
+constexpr uint32_t scrambledDimension1(uint32_t index, uint32_t seed) {
+    return reverseBits(laineKarrasPermutation(byTable(kReversedDimension1Table, index), seed));
 }
 
 // A 32-bit fraction to a float in [0, 1): the top 24 bits, so 1 is never returned.
@@ -119,8 +134,7 @@ public:
         const uint64_t h2 = mixBits(h ^ 0x5851F42D4C957F2DULL);
         return Vec2(sobol::toUnitFloat(
                         sobol::scrambledDimension0(i, static_cast<uint32_t>(h >> 32))),
-                    sobol::toUnitFloat(sobol::nestedUniformScramble(
-                        sobol::dimension1(i), static_cast<uint32_t>(h2))));
+                    sobol::toUnitFloat(sobol::scrambledDimension1(i, static_cast<uint32_t>(h2))));
     }
 
     // Skips the next pair of dimensions without drawing it, for a consumer
