@@ -73,8 +73,9 @@ constexpr uint32_t dimension1BitByBit(uint32_t index) {
 // T[3][byte 3], with T[k][b] = dimension1BitByBit(b << 8k). Four loads and
 // three XORs instead of a loop of up to 32 iterations with an unpredictable
 // branch each (the index is scrambled, so its bits are random): the loop was
-// the largest cost of eyelight rendering (issue 20). 4 KiB (8 with the reversed copy below), built at compile
-// time; the values are identical bit for bit.
+// the largest cost of eyelight rendering (issue 20). 4 KiB (8 with the
+// reversed copy below), built at compile time; the values are identical bit
+// for bit.
 struct Dimension1Table {
     uint32_t byByte[4][256];
 };
