@@ -4,10 +4,11 @@
 // reference, for four methods: fixed sampling at 4, 8, ... spp and adaptive
 // sampling (docs/adaptive.md) at decreasing thresholds (fixed sampling's
 // relRMSE at 4 ... 128 spp and the geometric mean of each two, at most 1,
-// with a budget of 1024 spp), each with power light selection and with the
-// light BVH (docs/lights.md). Each setting gives a point (the median render
-// time of --repeats renders (3) from --stats, and the relative RMSE against
-// the reference), where
+// with a budget of 1024 spp; where two neighbouring thresholds' errors are
+// more than 1.5x apart, the threshold between them too, up to twice), each
+// with power light selection and with the light BVH (docs/lights.md). Each
+// setting gives a point (the median render time of --repeats renders (3)
+// from --stats, and the relative RMSE against the reference), where
 //     relRMSE = sqrt(mean over pixels and channels of (x - ref)^2 / (ref^2 + 0.01))
 // weighs bright and dark pixels alike (the 0.01 keeps black pixels from
 // dividing by zero; the same measure as bench_roulette's relVar).
@@ -490,13 +491,33 @@ int main(int argc, char** argv) try {
                     // cheapest adaptive render (most pixels stop at min_samples).
                     if (const float t = float(std::min(e, 1.0)); thresholds.empty() || t < thresholds.back())
                         thresholds.push_back(t);
-                for (float t : thresholds) {
+                const auto adaptivePoint = [&](float t) {
                     char name[16];
                     std::snprintf(name, sizeof name, "t %.3g", double(t));
-                    curve.points.push_back(measure(
-                        name, {"--spp", std::to_string(o.adaptiveBudget), "--adaptive-threshold",
-                               std::to_string(t), "--set", selection}));
+                    return measure(name, {"--spp", std::to_string(o.adaptiveBudget),
+                                          "--adaptive-threshold", std::to_string(t), "--set",
+                                          selection});
+                };
+                std::vector<float> used;  // each point's threshold, in the points' order
+                for (float t : thresholds) {
+                    curve.points.push_back(adaptivePoint(t));
+                    used.push_back(t);
                 }
+                // Where two neighbouring thresholds give errors more than 1.5x
+                // apart (the step from threshold 1, where every pixel stops at
+                // min_samples, to the next is the common case), the threshold
+                // between them (geometric mean) is rendered too, at most twice
+                // per step: the interpolation to a target error then spans a
+                // short step, as it does on fixed sampling's curve.
+                for (int round = 0; round < 2; ++round)
+                    for (size_t k = 0; k + 1 < curve.points.size(); ++k)
+                        if (curve.points[k].error > 1.5 * curve.points[k + 1].error) {
+                            const float t = std::sqrt(used[k] * used[k + 1]);
+                            curve.points.insert(curve.points.begin() + std::ptrdiff_t(k) + 1,
+                                                adaptivePoint(t));
+                            used.insert(used.begin() + std::ptrdiff_t(k) + 1, t);
+                            ++k;  // past the new point: one insertion per step and round
+                        }
             }
             for (const Point& p : curve.points)
                 std::printf("%-8s %-12s %-8s %10.1f %9.3f %8.4f\n", s.name.c_str(),
