@@ -118,7 +118,8 @@ for t in "${targets[@]}"; do
     # The report and the input, so that a failure on a CI machine (whose
     # build folder is gone afterwards) can be reproduced from its log alone.
     echo "---- $t: the report (from the first error line, at most 40 lines) ----"
-    sed -n '/ERROR\|runtime error:\|terminate called\|what():/,$p' "$logs/$t.log" | head -n 40
+    # (sed may be cut off by head: pipefail must not end the script here)
+    sed -n '/ERROR\|runtime error:\|terminate called\|what():/,$p' "$logs/$t.log" | head -n 40 || true
     for f in "${found[@]}"; do
       echo "---- $t: $(basename "$f") ($(stat -c %s "$f") bytes), base64 (first 8 KiB) ----"
       head -c 8192 "$f" | base64
