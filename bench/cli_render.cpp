@@ -12,9 +12,6 @@ namespace fs = std::filesystem;
 
 namespace strahl::bench {
 
-namespace {
-
-// 'text' for the shell, with every ' inside closed, escaped and reopened.
 std::string quoted(const std::string& text) {
     std::string out = "'";
     for (char c : text) {
@@ -25,8 +22,6 @@ std::string quoted(const std::string& text) {
     }
     return out + "'";
 }
-
-}  // namespace
 
 Channels readChannels(const fs::path& file) {
     auto in = OIIO::ImageInput::open(file.string());
@@ -61,7 +56,10 @@ RenderTimes renderWithCli(const fs::path& scene, const fs::path& out,
     std::string command = quoted(STRAHL_BINARY) + " render " + quoted(scene.string()) +
                           " -q --exr-float -o " + quoted(out.string()) + " --stats " +
                           quoted(stats.string());
-    for (const std::string& a : args) command += " " + quoted(a);
+    for (const std::string& a : args) {
+        command += ' ';
+        command += quoted(a);
+    }
     if (std::system(command.c_str()) != 0) fail("render failed: ", command);
     std::ifstream in(stats);
     const nlohmann::json j = nlohmann::json::parse(in);

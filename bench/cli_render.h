@@ -14,6 +14,9 @@ namespace strahl::bench {
 using Channels = std::map<std::string, std::vector<float>>;
 Channels readChannels(const std::filesystem::path& file);
 
+// 'text' for the shell, with every ' inside closed, escaped and reopened.
+std::string quoted(const std::string& text);
+
 // The planes prefix+"R", "G", "B" interleaved as RGB.
 std::vector<float> rgb(const Channels& channels, const std::string& prefix);
 

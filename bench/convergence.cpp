@@ -230,12 +230,25 @@ bool onPath(const std::string& program) {
 double runPathtracer(const std::vector<std::string>& args, int spp, const Options& o,
                      const fs::path& out, const fs::path& work) {
     const fs::path trace = work / "pathtracer.trace", log = work / "pathtracer.log";
-    std::string command = "strace -f --seccomp-bpf -ttt -e trace=openat,write -o '" +
-                          trace.string() + "' stdbuf -oL pathtracer";
-    for (const std::string& a : args) command += " '" + a + "'";
-    command += " --spp " + std::to_string(spp) + " --size " + std::to_string(o.width) + " " +
-               std::to_string(o.height) + " --verbose 2 -o '" + out.string() + "' >'" +
-               log.string() + "' 2>&1";
+    // Appended piece by piece (GCC 12 warns, wrongly, on literal + string).
+    std::string command = "strace -f --seccomp-bpf -ttt -e trace=openat,write -o ";
+    command += bench::quoted(trace.string());
+    command += " stdbuf -oL pathtracer";
+    for (const std::string& a : args) {
+        command += ' ';
+        command += bench::quoted(a);
+    }
+    command += " --spp ";
+    command += std::to_string(spp);
+    command += " --size ";
+    command += std::to_string(o.width);
+    command += ' ';
+    command += std::to_string(o.height);
+    command += " --verbose 2 -o ";
+    command += bench::quoted(out.string());
+    command += " >";
+    command += bench::quoted(log.string());
+    command += " 2>&1";
     run(command, "pathtracer");
     std::ifstream in(trace);
     std::string line, quotedOut = "\"";
