@@ -127,11 +127,6 @@ Film::Film(int fullWidth, int fullHeight, PixelRect crop, std::vector<AovKind> a
     }
 }
 
-size_t Film::index(int x, int y) const {
-    return static_cast<size_t>(y - crop_.y0) * static_cast<size_t>(crop_.width()) +
-           static_cast<size_t>(x - crop_.x0);
-}
-
 void Film::keepHalves(uint32_t firstSample) {
     for (AovKind kind : {AovKind::Normal, AovKind::Depth, AovKind::Albedo})
         if (std::find(aovs_.begin(), aovs_.end(), kind) == aovs_.end())

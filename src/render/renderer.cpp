@@ -64,6 +64,8 @@ void renderTilePackets(TileContext& ctx, const TileRayGenerator& gen, const Pixe
             const int active = gen.fillPacket(tile, bx, by, sample, packet, wanted);
             if (active == 0) continue;
             ctx.cameraRays += static_cast<uint64_t>(active);
+            for (int lane = 0; lane < N; ++lane)
+                if (packet.valid[lane]) ctx.film.prefetch(packet.px[lane], packet.py[lane]);
             ctx.world.accel->intersectPacket(packet.valid, packet.rays, RayCoherence::Coherent);
             for (int lane = 0; lane < N; ++lane) {
                 if (!packet.valid[lane]) continue;

@@ -382,5 +382,48 @@ void checkPacketLayout() {
 TEST(TileRayGenerator, Packets16CoverFourByFourBlocks) { checkPacketLayout<16>(); }
 TEST(TileRayGenerator, Packets8CoverFourByTwoBlocks) { checkPacketLayout<8>(); }
 
+// A packet's lanes are bit for bit sampleRay's rays and samplers, whichever
+// way the generator makes them (all the pinhole's rays at once; one lane at a
+// time through the lens), and inactive lanes hold the default ray.
+template <int N>
+void checkPacketsEqualSampleRay() {
+    ThinLens thin;
+    thin.apertureRadius = 0.05f;
+    const ImageWindow window{-1.3f, 0.7f, -0.4f, 0.9f};
+    for (Projection projection : {Projection::Perspective, Projection::Orthographic})
+        for (const ThinLens& lens : {ThinLens{}, thin})
+            for (int spp : {1, 4}) {
+                const Camera cam(obliqueFrame(), projection, window, 1.7f, 37, 23, lens);
+                const TileRayGenerator gen(cam, 9, spp, PixelFilter::gaussian(1.5f, 0.5f));
+                const PixelRect tile{32, 20, 37, 23};  // partial blocks on both edges
+                const auto wanted = [](int x, int y) { return (x + 2 * y) % 5 != 0; };
+                for (int s = 0; s < spp; ++s)
+                    for (int by = tile.y0; by < tile.y1; by += CameraPacket<N>::kBlockHeight)
+                        for (int bx = tile.x0; bx < tile.x1; bx += CameraPacket<N>::kBlockWidth) {
+                            CameraPacket<N> packet;
+                            gen.fillPacket(tile, bx, by, s, packet, wanted);
+                            for (int lane = 0; lane < N; ++lane) {
+                                const int x = packet.px[lane], y = packet.py[lane];
+                                const bool active = x < tile.x1 && y < tile.y1 && wanted(x, y);
+                                ASSERT_EQ(packet.valid[lane], active ? -1 : 0);
+                                Sampler sampler;
+                                const Ray expected = active ? gen.sampleRay(x, y, s, sampler) : Ray{};
+                                const Ray ray = packet.rays.ray(lane);
+                                EXPECT_EQ(ray.origin, expected.origin) << x << ", " << y;
+                                EXPECT_EQ(ray.dir, expected.dir) << x << ", " << y;
+                                EXPECT_EQ(ray.tnear, expected.tnear);
+                                EXPECT_EQ(ray.tfar, expected.tfar);
+                                EXPECT_EQ(ray.time, expected.time);
+                                EXPECT_EQ(packet.rays.geomID[lane], kInvalidId);
+                                if (active)
+                                    EXPECT_EQ(packet.sampler[lane].get2D(), sampler.get2D());
+                            }
+                        }
+            }
+}
+
+TEST(TileRayGenerator, Packets16AreSampleRayBitForBit) { checkPacketsEqualSampleRay<16>(); }
+TEST(TileRayGenerator, Packets8AreSampleRayBitForBit) { checkPacketsEqualSampleRay<8>(); }
+
 }  // namespace
 }  // namespace strahl

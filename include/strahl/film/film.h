@@ -100,6 +100,19 @@ public:
     // The first call for a pixel is its first sample (the objectid AOV).
     void addSample(int x, int y, const Color& radiance, const AovSample& aov);
 
+    // A hint that addSample(x, y, ...) is coming: starts loading the pixel's
+    // radiance sum and sample count into the cache. A camera packet asks for
+    // its pixels before it is traced, so the film's cache misses (a 1024²
+    // film is 48 MB of sums) overlap Embree's traversal instead of following
+    // it. Changes nothing but timing.
+    void prefetch(int x, int y) const {
+        const size_t i = index(x, y);
+        const char* sum = reinterpret_cast<const char*>(&radiance_[i]);
+        __builtin_prefetch(sum, 1);
+        __builtin_prefetch(sum + sizeof(ExactSum3) - 1, 1);  // a 48-byte sum may span two lines
+        __builtin_prefetch(&samples_[i], 1);
+    }
+
     // Also keeps the beauty, normal, depth and albedo sums of the samples of
     // even index alone, so that the image splits into two independent halves,
     // even and odd samples, as the denoiser needs (denoise/denoiser.h): the
@@ -178,7 +191,10 @@ public:
     std::vector<float> resolveHalfAov(int half, AovKind kind) const;
 
 private:
-    size_t index(int x, int y) const;
+    size_t index(int x, int y) const {
+        return static_cast<size_t>(y - crop_.y0) * static_cast<size_t>(crop_.width()) +
+               static_cast<size_t>(x - crop_.x0);
+    }
     // Every per-pixel buffer, in one fixed order (packPixels, unpackPixels).
     auto buffers() const {
         return std::tie(radiance_, samples_, hits_, normal_, depth_, albedo_, position_,
