@@ -1,5 +1,7 @@
 #include "strahl/camera/camera.h"
 
+#include <immintrin.h>  // SSE: the packet rays' square roots (x86-64 only, as Embree's packets)
+
 #include <cmath>
 
 #include "strahl/core/error.h"
@@ -110,6 +112,57 @@ Ray Camera::generateRay(float x, float y, const Vec2& lensSample) const {
     ray.tfar = kInfinity;
     return ray;
 }
+
+template <int N>
+void Camera::generatePinholeRays(const float (&x)[N], const float (&y)[N],
+                                 RayHitPacket<N>& packet) const {
+    const CameraFrame& f = frame_;
+    float u[N], v[N];
+    for (int i = 0; i < N; ++i) {
+        u[i] = window_.l + du_ * x[i];
+        v[i] = window_.t + dv_ * y[i];
+    }
+    if (projection_ == Projection::Orthographic) {
+        for (int i = 0; i < N; ++i) {
+            packet.org_x[i] = f.e.x + u[i] * f.u.x + v[i] * f.v.x;
+            packet.org_y[i] = f.e.y + u[i] * f.u.y + v[i] * f.v.y;
+            packet.org_z[i] = f.e.z + u[i] * f.u.z + v[i] * f.v.z;
+            packet.dir_x[i] = -f.w.x;
+            packet.dir_y[i] = -f.w.y;
+            packet.dir_z[i] = -f.w.z;
+        }
+        return;
+    }
+    // glm's (-d W + u U + v V), e + s and normalize(s) = s * (1 / sqrt(dot(s, s))),
+    // component by component, with dot summed as (x x + y y) + z z.
+    const Vec3 back = -d_ * f.w;
+    alignas(16) float sx[N], sy[N], sz[N], inverseLength[N];
+    for (int i = 0; i < N; ++i) {
+        sx[i] = back.x + u[i] * f.u.x + v[i] * f.v.x;
+        sy[i] = back.y + u[i] * f.u.y + v[i] * f.v.y;
+        sz[i] = back.z + u[i] * f.u.z + v[i] * f.v.z;
+        packet.org_x[i] = f.e.x + sx[i];
+        packet.org_y[i] = f.e.y + sy[i];
+        packet.org_z[i] = f.e.z + sz[i];
+        inverseLength[i] = sx[i] * sx[i] + sy[i] * sy[i] + sz[i] * sz[i];
+    }
+    // std::sqrt may set errno, which keeps the compiler from vectorising it;
+    // SSE's square root and division round exactly as the scalar ones do.
+    static_assert(N % 4 == 0);
+    for (int i = 0; i < N; i += 4)
+        _mm_store_ps(inverseLength + i,
+                     _mm_div_ps(_mm_set1_ps(1.0f), _mm_sqrt_ps(_mm_load_ps(inverseLength + i))));
+    for (int i = 0; i < N; ++i) {
+        packet.dir_x[i] = sx[i] * inverseLength[i];
+        packet.dir_y[i] = sy[i] * inverseLength[i];
+        packet.dir_z[i] = sz[i] * inverseLength[i];
+    }
+}
+
+template void Camera::generatePinholeRays<8>(const float (&)[8], const float (&)[8],
+                                              RayHitPacket<8>&) const;
+template void Camera::generatePinholeRays<16>(const float (&)[16], const float (&)[16],
+                                               RayHitPacket<16>&) const;
 
 Mat4 Camera::worldToCamera() const {
     // Rows are u, v, w; the translation moves e to the origin. GLM is column-major.

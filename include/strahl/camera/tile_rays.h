@@ -66,6 +66,13 @@ public:
     std::vector<CameraPacket<N>> tilePackets(const PixelRect& tile, int s) const;
 
 private:
+    // Seeds `sampler` for sample `s` of pixel (px, py) and takes the camera's
+    // two dimension pairs from it (the filter offset, then the lens point):
+    // returns the sample's raster point and sets `lens` (the lens centre,
+    // (0.5, 0.5), for a pinhole). sampleRay and fillPacket's pinhole path
+    // share it, so both sample exactly alike.
+    Vec2 cameraSample(int px, int py, int s, Sampler& sampler, Vec2& lens) const;
+
     const Camera& camera_;
     uint64_t seed_;
     int spp_;
@@ -87,40 +94,21 @@ int TileRayGenerator::fillPacket(const PixelRect& tile, int bx, int by, int s,
             const int y = by + lane / CameraPacket<N>::kBlockWidth;
             packet.px[lane] = x;
             packet.py[lane] = y;
-            Vec2 offset(0.0f);
-            if (x < tile.x1 && y < tile.y1 && wanted(x, y)) {
-                Sampler& sampler = packet.sampler[lane];
-                sampler = Sampler(seed_, x, y, static_cast<uint32_t>(s));
-                if (spp_ > 1)
-                    offset = filter_.sample(sampler.get2D());
-                else
-                    sampler.skip2D();
-                sampler.skip2D();  // the lens pair
-                packet.valid[lane] = -1;
-                ++active;
-            } else {
-                packet.valid[lane] = 0;
-            }
-            rasterX[lane] = static_cast<float>(x) + 0.5f + offset.x;
-            rasterY[lane] = static_cast<float>(y) + 0.5f + offset.y;
+            const bool isActive = x < tile.x1 && y < tile.y1 && wanted(x, y);
+            Vec2 raster(0.0f), lens;
+            if (isActive) raster = cameraSample(x, y, s, packet.sampler[lane], lens);
+            packet.valid[lane] = isActive ? -1 : 0;
+            active += isActive;
+            rasterX[lane] = raster.x;
+            rasterY[lane] = raster.y;
         }
-        camera_.generatePinholeRays(rasterX, rasterY, packet.rays);
-        const Ray inactive{};
+        auto& rays = packet.rays;
+        camera_.generatePinholeRays(rasterX, rasterY, rays);
         for (int lane = 0; lane < N; ++lane) {
-            auto& rays = packet.rays;
-            if (!packet.valid[lane]) {
-                rays.setRay(lane, inactive);  // well-defined contents for inactive lanes
-                continue;
-            }
-            rays.tnear[lane] = 0.0f;
-            rays.tfar[lane] = kInfinity;
-            rays.time[lane] = 0.0f;
-            rays.mask[lane] = 0xFFFFFFFFu;
-            rays.id[lane] = static_cast<uint32_t>(lane);
-            rays.flags[lane] = 0;
-            rays.geomID[lane] = kInvalidId;
-            rays.primID[lane] = kInvalidId;
-            rays.instID[lane] = kInvalidId;
+            // The rest of each lane's fields; inactive lanes get well-defined contents.
+            const Ray ray{Vec3(rays.org_x[lane], rays.org_y[lane], rays.org_z[lane]),
+                          Vec3(rays.dir_x[lane], rays.dir_y[lane], rays.dir_z[lane])};
+            rays.setRay(lane, packet.valid[lane] ? ray : Ray{});
         }
         return active;
     }
