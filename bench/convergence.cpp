@@ -19,6 +19,11 @@
 // method's error-time curve by interpolating between the two renders around
 // it on log-log axes (error falls as a power of time). speed-up = time of
 // fixed sampling with power selection / the method's time at that error.
+// Each such line is followed by the mean samples per pixel each method needs
+// for the same error, read off the same way: free of the machine's timing
+// noise, it separates where the samples go from what they cost.
+// --method NAME (repeatable) measures only those methods besides fixed
+// sampling, which always runs (it is the baseline and sets the thresholds).
 //
 // The reference renders with --reference-spp samples (16384) and another seed
 // than the measured renders, once: it is cached outside the repository
@@ -84,6 +89,7 @@ struct Options {
     fs::path cache;
     fs::path svg;
     std::vector<std::string> only;  // scene names; empty: all
+    std::vector<std::string> methods;  // --method: besides fixed, which always runs; empty: all
 };
 
 struct BenchScene {
@@ -180,19 +186,24 @@ double relativeRmse(const std::vector<float>& image, const std::vector<float>& r
     return std::sqrt(sum / double(image.size()));
 }
 
-// The time `curve` needs to reach `error`, interpolated on log-log axes
-// between the renders around it. If its cheapest render is already below
-// `error`, that render's time: an upper bound (*bound is set). -1: never.
-double timeToError(std::vector<Point> p, double error, bool* bound = nullptr) {
+// The effort (render time, or mean samples per pixel) `curve` needs to reach
+// `error`, interpolated on log-log axes between the renders around it. If its
+// cheapest render is already below `error`, that render's effort: an upper
+// bound (*bound is set). -1: never.
+double effortToError(const std::vector<Point>& p, double error, double Point::*effort,
+                     bool* bound = nullptr) {
     if (bound) *bound = !p.empty() && p.front().error <= error;
     for (size_t i = 1; i < p.size(); ++i) {
         if (p[i].error > error) continue;
-        if (p[i - 1].error <= error) return p[i - 1].seconds;  // already there before
+        if (p[i - 1].error <= error) return p[i - 1].*effort;  // already there before
         const double f = std::log(p[i - 1].error / error) / std::log(p[i - 1].error / p[i].error);
-        return std::exp(std::log(p[i - 1].seconds) +
-                        f * (std::log(p[i].seconds) - std::log(p[i - 1].seconds)));
+        return std::exp(std::log(p[i - 1].*effort) +
+                        f * (std::log(p[i].*effort) - std::log(p[i - 1].*effort)));
     }
-    return p.empty() || p.front().error > error ? -1.0 : p.front().seconds;
+    return p.empty() || p.front().error > error ? -1.0 : p.front().*effort;
+}
+double timeToError(const std::vector<Point>& p, double error, bool* bound = nullptr) {
+    return effortToError(p, error, &Point::seconds, bound);
 }
 double timeToError(const Curve& curve, double error, bool* bound = nullptr) {
     return timeToError(curve.points, error, bound);
@@ -371,9 +382,16 @@ Options parse(int argc, char** argv) {
             o.only.push_back(next());
         else if (a == "--repeats")
             o.repeats = std::stoi(next());
-        else
+        else if (a == "--method") {
+            o.methods.push_back(next());
+            if (std::none_of(std::begin(kMethods), std::end(kMethods),
+                             [&](const Method& m) { return m.name == o.methods.back(); }))
+                fail("bench_convergence: unknown method '", o.methods.back(),
+                     "' (fixed, adaptive, bvh, adaptive+bvh)");
+        } else
             fail("usage: bench_convergence [--width W] [--height H] [--reference-spp N] "
-                 "[--target-spp N]... [--cache DIR] [--svg FILE] [--repeats N] [--scene NAME]...");
+                 "[--target-spp N]... [--cache DIR] [--svg FILE] [--repeats N] [--scene NAME]... "
+                 "[--method NAME]...");
     }
     if (o.width < 1 || o.height < 1 || o.referenceSpp < 1 || o.repeats < 1 ||
         std::any_of(o.targetSpp.begin(), o.targetSpp.end(), [](int n) { return n < 1; }))
@@ -478,6 +496,10 @@ int main(int argc, char** argv) try {
         };
         std::vector<Curve> sceneCurves;
         for (const Method& m : kMethods) {
+            // Fixed sampling always runs: it is the baseline and sets the thresholds.
+            if (m.name != "fixed" && !o.methods.empty() &&
+                std::find(o.methods.begin(), o.methods.end(), m.name) == o.methods.end())
+                continue;
             Curve curve{s.name, m.name, {}};
             const std::string selection = "/render/light_selection=\"" + m.selection + "\"";
             if (!m.adaptive) {
@@ -555,6 +577,24 @@ int main(int argc, char** argv) try {
                     std::printf(", %s %.3f s (%.2fx)", sceneCurves[k].method.c_str(), t, tFixed / t);
                 else
                     std::printf(", %s does not reach it", sceneCurves[k].method.c_str());
+            }
+            std::printf("\n");
+            // The same in mean samples per pixel: free of the machine's timing
+            // noise, it shows how much of a speed-up is where the samples go
+            // and how much their cost.
+            std::printf("%-8s spp to relRMSE %.4f (fixed %d spp):", s.name.c_str(), target->error,
+                        targetSpp);
+            for (size_t k = 1; k < sceneCurves.size(); ++k) {
+                bool bound = false;
+                const double n =
+                    effortToError(sceneCurves[k].points, target->error, &Point::samples, &bound);
+                if (n > 0.0)
+                    std::printf("%s %s %s%.1f (%s%.2fx)", k == 1 ? "" : ",",
+                                sceneCurves[k].method.c_str(), bound ? "<= " : "", n,
+                                bound ? ">= " : "", targetSpp / n);
+                else
+                    std::printf("%s %s does not reach it", k == 1 ? "" : ",",
+                                sceneCurves[k].method.c_str());
             }
             std::printf("\n");
         }

@@ -216,7 +216,7 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
         ->check(CLI::Range(0.0f, 1e30f));
     render->add_option("--adaptive-threshold", o.adaptiveThreshold,
                        "Adaptive sampling: a pixel stops once its noise (the relative standard "
-                       "error of its mean, absolute below 0.1, over its 5x5 neighbourhood) is "
+                       "error of its mean, absolute below 0.1, over its 3x3 neighbourhood) is "
                        "below this; --spp is then the most a pixel takes, and the samples AOV "
                        "counts them; 0.05 is a good start, 0 = off (sets "
                        "render.adaptive.threshold; docs/adaptive.md)")

@@ -65,7 +65,7 @@ TEST(AdaptiveSampling, NoiseIsTheRelativeStandardErrorAboveADarkFloor) {
 }
 
 TEST(AdaptiveSampling, APixelStopsOnlyWhenItsWholeNeighbourhoodIsQuiet) {
-    ASSERT_EQ(kNeighbourhoodRadius, 2);  // 5 x 5 neighbourhoods below
+    ASSERT_EQ(kNeighbourhoodRadius, 1);  // 3 x 3 neighbourhoods below
     Film film(11, 9, PixelRect{0, 0, 11, 9}, {});
     film.trackConvergence();
     for (int y = 0; y < 9; ++y)
@@ -75,12 +75,13 @@ TEST(AdaptiveSampling, APixelStopsOnlyWhenItsWholeNeighbourhoodIsQuiet) {
             addGrey(film, x, y, noisy ? 0.0f : 0.5f);
             addGrey(film, x, y, noisy ? 2.0f : 0.5f);
         }
-    EXPECT_EQ(stopConvergedPixels(film, adaptive(0.1f, 2)), 25u + 9u);
-    EXPECT_FALSE(film.converged(3, 2));  // two pixels from (5, 4) both ways
-    EXPECT_FALSE(film.converged(7, 6));
-    EXPECT_TRUE(film.converged(8, 4));  // three pixels away
-    EXPECT_FALSE(film.converged(2, 2));  // the corner's neighbourhood, clipped to the film
-    EXPECT_TRUE(film.converged(2, 4));
+    EXPECT_EQ(stopConvergedPixels(film, adaptive(0.1f, 2)), 9u + 4u);
+    EXPECT_FALSE(film.converged(4, 3));  // one pixel from (5, 4) both ways
+    EXPECT_FALSE(film.converged(6, 5));
+    EXPECT_TRUE(film.converged(7, 4));  // two pixels away
+    EXPECT_TRUE(film.converged(3, 2));
+    EXPECT_FALSE(film.converged(1, 1));  // the corner's neighbourhood, clipped to the film
+    EXPECT_TRUE(film.converged(2, 1));
     // A stopped pixel stays stopped; running ones are judged again.
     EXPECT_EQ(stopConvergedPixels(film, adaptive(10.0f, 2)), 0u);
     EXPECT_TRUE(film.converged(5, 4));
