@@ -19,9 +19,10 @@
 // (clipped to the rendered rectangle) is below the threshold: a pixel whose
 // few samples happened to agree is not fooled if its neighbours are still
 // noisy. (A 5 x 5 neighbourhood, used before, kept a ring of quiet pixels
-// sampling around every noisy one: measured, it needed 1.1 to 1.8x the
-// samples of 3 x 3 for the same image error; bench/RESULTS.md.) Decisions are taken only between sample passes, from the film alone,
-// and recorded in it (Film::trackConvergence): the same film gives the same
+// sampling around every noisy one: for the same image error it took up to
+// 1.9x the samples of 3 x 3 on the default scene; bench/RESULTS.md.)
+// Decisions are taken only between sample passes, from the film alone, and
+// recorded in it (Film::trackConvergence): the same film gives the same
 // decisions whatever the threads, tiles, checkpoints or ranks that made it.
 
 #include <cstddef>
