@@ -415,8 +415,9 @@ void checkPacketsEqualSampleRay() {
                                 EXPECT_EQ(ray.tfar, expected.tfar);
                                 EXPECT_EQ(ray.time, expected.time);
                                 EXPECT_EQ(packet.rays.geomID[lane], kInvalidId);
-                                if (active)
+                                if (active) {
                                     EXPECT_EQ(packet.sampler[lane].get2D(), sampler.get2D());
+                                }
                             }
                         }
             }

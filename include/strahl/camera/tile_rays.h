@@ -83,47 +83,39 @@ private:
 template <int N, typename Wanted>
 int TileRayGenerator::fillPacket(const PixelRect& tile, int bx, int by, int s,
                                  CameraPacket<N>& packet, const Wanted& wanted) const {
+    // The common case, a pinhole at rest, takes sampleRay's samplers and
+    // raster points lane by lane and then makes all the packet's rays at once
+    // (bit for bit sampleRay's; tested). A lens or motion goes lane by lane.
+    const bool pinholeAtRest = camera_.apertureRadius() == 0.0f && !motion_;
+    alignas(16) float rasterX[N], rasterY[N];
     int active = 0;
-    if (camera_.apertureRadius() == 0.0f && !motion_) {
-        // The common case, a pinhole at rest: sampleRay's samplers and raster
-        // points lane by lane, then all the packet's rays at once (bit for bit
-        // sampleRay's; tested).
-        alignas(16) float rasterX[N], rasterY[N];
-        for (int lane = 0; lane < N; ++lane) {
-            const int x = bx + lane % CameraPacket<N>::kBlockWidth;
-            const int y = by + lane / CameraPacket<N>::kBlockWidth;
-            packet.px[lane] = x;
-            packet.py[lane] = y;
-            const bool isActive = x < tile.x1 && y < tile.y1 && wanted(x, y);
-            Vec2 raster(0.0f), lens;
-            if (isActive) raster = cameraSample(x, y, s, packet.sampler[lane], lens);
-            packet.valid[lane] = isActive ? -1 : 0;
-            active += isActive;
-            rasterX[lane] = raster.x;
-            rasterY[lane] = raster.y;
-        }
-        auto& rays = packet.rays;
-        camera_.generatePinholeRays(rasterX, rasterY, rays);
-        for (int lane = 0; lane < N; ++lane) {
-            // The rest of each lane's fields; inactive lanes get well-defined contents.
-            const Ray ray{Vec3(rays.org_x[lane], rays.org_y[lane], rays.org_z[lane]),
-                          Vec3(rays.dir_x[lane], rays.dir_y[lane], rays.dir_z[lane])};
-            rays.setRay(lane, packet.valid[lane] ? ray : Ray{});
-        }
-        return active;
-    }
     for (int lane = 0; lane < N; ++lane) {
         const int x = bx + lane % CameraPacket<N>::kBlockWidth;
         const int y = by + lane / CameraPacket<N>::kBlockWidth;
         packet.px[lane] = x;
         packet.py[lane] = y;
-        if (x < tile.x1 && y < tile.y1 && wanted(x, y)) {
-            packet.rays.setRay(lane, sampleRay(x, y, s, packet.sampler[lane]));
-            packet.valid[lane] = -1;
-            ++active;
-        } else {
+        const bool isActive = x < tile.x1 && y < tile.y1 && wanted(x, y);
+        packet.valid[lane] = isActive ? -1 : 0;
+        active += isActive;
+        rasterX[lane] = rasterY[lane] = 0.0f;
+        if (!isActive) {
             packet.rays.setRay(lane, Ray{});  // well-defined contents for inactive lanes
-            packet.valid[lane] = 0;
+        } else if (pinholeAtRest) {
+            Vec2 lens;
+            const Vec2 raster = cameraSample(x, y, s, packet.sampler[lane], lens);
+            rasterX[lane] = raster.x;
+            rasterY[lane] = raster.y;
+        } else {
+            packet.rays.setRay(lane, sampleRay(x, y, s, packet.sampler[lane]));
+        }
+    }
+    if (pinholeAtRest) {
+        auto& rays = packet.rays;
+        camera_.generatePinholeRays(rasterX, rasterY, rays);  // origins and directions of every lane
+        for (int lane = 0; lane < N; ++lane) {
+            const Ray ray{Vec3(rays.org_x[lane], rays.org_y[lane], rays.org_z[lane]),
+                          Vec3(rays.dir_x[lane], rays.dir_y[lane], rays.dir_z[lane])};
+            rays.setRay(lane, packet.valid[lane] ? ray : Ray{});
         }
     }
     return active;
