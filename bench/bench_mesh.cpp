@@ -77,9 +77,9 @@ Camera frontCamera(const Bounds3& bounds, int size) {
                   Camera::windowFromFov(glm::radians(40.0f), 1.0f, size, size), 1.0f, size, size);
 }
 
-std::string takeMeshOption(int& argc, char** argv) {
+std::string takeOption(int& argc, char** argv, const char* name) {
     for (int i = 1; i + 1 < argc; ++i) {
-        if (std::strcmp(argv[i], "--mesh") == 0) {
+        if (std::strcmp(argv[i], name) == 0) {
             std::string path = argv[i + 1];
             for (int j = i; j + 2 <= argc; ++j) argv[j] = argv[j + 2];
             argc -= 2;

@@ -22,8 +22,8 @@ TriangleMesh benchmarkMesh(const std::string& path, size_t minTriangles, std::st
 // is traversal of a dense mesh, not rays that miss it.
 Camera frontCamera(const Bounds3& bounds, int size);
 
-// Removes "--mesh PATH" from the command line (before Google Benchmark sees
-// it) and returns PATH, or "" if absent.
-std::string takeMeshOption(int& argc, char** argv);
+// Removes "NAME VALUE" (e.g. "--mesh PATH") from the command line, before
+// Google Benchmark sees it, and returns VALUE, or "" if absent.
+std::string takeOption(int& argc, char** argv, const char* name);
 
 }  // namespace strahl::bench

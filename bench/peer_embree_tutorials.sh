@@ -6,23 +6,26 @@
 # programs): a UV sphere of 2 million triangles on a ground quad with a small
 # marker box, grey Lambert (Kd 0.8), one point light, black background.
 #
-# What is timed: each program's whole process at the full image size and at a
-# 8 x 8 image, otherwise identical (same scene load and BVH build, same output
-# format). The difference is the time of the extra pixels alone, measured the
-# same way for both programs, since the tutorials print no render time of
-# their own. Every figure is the median of --repeats runs, interleaved
-# (viewer, strahl, viewer, strahl, ...) so load on a shared machine hits both.
+# What is timed: each program's render phase alone, after the BVH is built
+# and before the image is written: strahl's own statistics (timings.render);
+# the tutorials, which print no time, from their system calls (strace, below).
+# Every figure is the median of --repeats runs, interleaved (viewer, strahl,
+# viewer, strahl, ...) so load on a shared machine hits both.
 #
 #   eyelight: 1 camera ray per pixel, 1024 x 1024, eyelight shading.
-#             Figure: Mrays/s = (1024^2 - 8^2) / time difference.
+#             Figure: Mrays/s = 1024^2 / render time.
 #   path:     512 x 512, 16 spp, the light of 4 bounces: the pathtracer's
 #             --max-path-length 5 (5 hits, each with a shadow ray) against
 #             strahl's --max-depth 5, no Russian roulette in either.
-#             Figure: seconds per sample pass = time difference / 16.
+#             Figure: seconds per sample pass = render time / 16.
 #
 # Ratios printed at the end, with the targets of issue 20:
 #   strahl eyelight Mrays/s / viewer Mrays/s          (target >= 2)
 #   strahl path s per sample / pathtracer s per sample (target <= 0.8)
+# and the ceiling of the first: strahl's camera packets of the same view traced
+# by rtcIntersect16 alone, with no ray generation, shading or film
+# (bench_primary_rays --scene, its case (a)), against the viewer: the most any
+# renderer tracing those rays through this Embree could reach.
 #
 # Usage: bench/peer_embree_tutorials.sh [--repeats N] [--threads N] [--cache DIR]
 #        (run from anywhere; needs a Release build in build/ and embree-tools,
@@ -41,13 +44,16 @@ while (($#)); do
   esac
 done
 strahl="$root/build/bin/strahl"
+bare_bench="$root/build/bin/bench_primary_rays"
 for tool in viewer pathtracer; do
   command -v "$tool" >/dev/null || {
     echo "peer: '$tool' not found: Debian's embree-tools is missing (scripts/setup.sh installs it)" >&2
     exit 1
   }
 done
-[ -x "$strahl" ] || { echo "peer: $strahl not found: build first (scripts/setup.sh && cmake --build build)" >&2; exit 1; }
+for program in "$strahl" "$bare_bench"; do
+  [ -x "$program" ] || { echo "peer: $program not found: build first (scripts/setup.sh && cmake --build build)" >&2; exit 1; }
+done
 
 mkdir -p "$cache"
 obj="$cache/sphere_scene.obj"
@@ -165,11 +171,19 @@ for ((k = 0; k < repeats; k++)); do
   echo "peer: repeat $((k + 1)): viewer ${viewer[k]} s, strahl eyelight ${eyelight[k]} s, pathtracer ${tracer[k]} s, strahl path ${path[k]} s"
 done
 
+# The ceiling (about 20 s): "(a) bare X  (b) eyelight Y" from the bench's summary.
+"$bare_bench" --scene "$cache/sphere_scene.json" >"$work/bare.log" 2>&1 ||
+  { echo "peer: failed: $bare_bench --scene $cache/sphere_scene.json" >&2; cat "$work/bare.log" >&2; exit 1; }
+read -r bare bare_eyelight < <(sed -n 's/.*(a) bare \([0-9.]*\) *(b) eyelight \([0-9.]*\).*/\1 \2/p' "$work/bare.log")
+[ -n "${bare:-}" ] || { echo "peer: no '(a) bare' figure in the output of $bare_bench" >&2; cat "$work/bare.log" >&2; exit 1; }
+
 awk -v v="$(median "${viewer[@]}")" -v e="$(median "${eyelight[@]}")" \
-  -v t="$(median "${tracer[@]}")" -v p="$(median "${path[@]}")" -v rays="$rays" 'BEGIN {
+  -v t="$(median "${tracer[@]}")" -v p="$(median "${path[@]}")" -v rays="$rays" \
+  -v bare="$bare" -v bare_eyelight="$bare_eyelight" 'BEGIN {
   n = 1024 * 1024
   printf "eyelight 1024x1024, 1 spp: viewer %.1f Mrays/s, strahl %.1f Mrays/s\n", n / v / 1e6, n / e / 1e6
   printf "path 512x512, 16 spp: pathtracer %.4f s per sample, strahl %.4f s per sample (strahl: %.1f M rays)\n", t / 16, p / 16, rays / 1e6
   printf "ratio strahl/viewer Mrays/s         = %.2f  (target >= 2.00) %s\n", v / e, (v / e >= 2) ? "PASS" : "FAIL"
   printf "ratio strahl/pathtracer s per sample = %.2f  (target <= 0.80) %s\n", p / t, (p / t <= 0.8) ? "PASS" : "FAIL"
+  printf "ceiling: rtcIntersect16 alone on strahl'"'"'s camera packets %.1f Mrays/s = %.2f x the viewer; strahl'"'"'s eyelight render reaches %.2f of it (bench_primary_rays, fastest rounds)\n", bare, bare / (n / v / 1e6), bare_eyelight / bare
 }'

@@ -111,7 +111,7 @@ double fastest(const std::vector<double>& v) {
 
 int main(int argc, char** argv) {
     using namespace strahl::bench;
-    const std::string meshPath = takeMeshOption(argc, argv);
+    const std::string meshPath = takeOption(argc, argv, "--mesh");
     benchmark::Initialize(&argc, argv);
     const Fixture& f = fixture(meshPath);
     std::printf(
