@@ -7,8 +7,10 @@
 # Inputs that failed are kept in build-fuzz/fuzz-artifacts/<target>/ (replay
 # one with build-fuzz/bin/<target> <file>). docs/reliability.md, "Fuzzing".
 #
-# Usage: scripts/fuzz.sh [--seconds N] [target...]
+# Usage: scripts/fuzz.sh [--seconds N] [--jobs N] [target...]
 #   --seconds N   fuzzing time per target (default 30)
+#   --jobs N      targets fuzzed at once, each in its own process on one core
+#                 (default: the number of cores; the time per target is the same)
 #   target        fuzz_scene_json, fuzz_mitsuba_xml, fuzz_pbrt, fuzz_ply, fuzz_serialized, fuzz_obj,
 #                 fuzz_gltf, fuzz_formula (default: all)
 set -euo pipefail
@@ -17,6 +19,7 @@ build="$root/build-fuzz"
 all_targets=(fuzz_scene_json fuzz_mitsuba_xml fuzz_pbrt fuzz_ply fuzz_serialized fuzz_obj fuzz_gltf fuzz_formula)
 
 seconds=30
+jobs="$(nproc)"
 targets=()
 while (($#)); do
   case "$1" in
@@ -28,8 +31,16 @@ while (($#)); do
       seconds="$2"
       shift 2
       ;;
+    --jobs)
+      [[ $# -ge 2 && "$2" =~ ^[0-9]+$ && "$2" -gt 0 ]] || {
+        echo "fuzz: --jobs needs a positive whole number" >&2
+        exit 2
+      }
+      jobs="$2"
+      shift 2
+      ;;
     -h | --help)
-      sed -n '2,12p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
+      sed -n '2,15p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
       exit 0
       ;;
     fuzz_*)
@@ -38,7 +49,7 @@ while (($#)); do
       shift
       ;;
     *)
-      echo "fuzz: unknown argument '$1' (usage: scripts/fuzz.sh [--seconds N] [target...])" >&2
+      echo "fuzz: unknown argument '$1' (usage: scripts/fuzz.sh [--seconds N] [--jobs N] [target...])" >&2
       exit 2
       ;;
   esac
@@ -81,19 +92,39 @@ artifacts="$build/fuzz-artifacts"
 logs="$build/fuzz-logs"
 mkdir -p "$logs"
 
-clean=0
-for t in "${targets[@]}"; do
-  rm -rf "${artifacts:?}/$t"
-  mkdir -p "$work/$t/corpus" "$work/$t/tmp" "$artifacts/$t"
-  cp "$root/fuzz/corpus/$t/"* "$work/$t/corpus/"
-  dict=()
+# One target's run; its exit status goes to $work/<target>/status (the function
+# itself always succeeds, so that `wait` below never stops the script).
+fuzz_target() {
+  local t="$1" status=0 dict=()
   [ -f "$root/fuzz/dict/$t.dict" ] && dict=("-dict=$root/fuzz/dict/$t.dict")
-  status=0
   # TMPDIR: the harness's scratch folder and the glTF loader's extracted images
   # land in the work folder, which is removed afterwards.
   TMPDIR="$work/$t/tmp" "$build/bin/$t" "$work/$t/corpus" "${dict[@]}" \
     -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 -print_final_stats=1 \
     -artifact_prefix="$artifacts/$t/" >"$logs/$t.log" 2>&1 || status=$?
+  echo "$status" >"$work/$t/status"
+}
+
+# libFuzzer runs one process on one core: --jobs targets run side by side,
+# each for the same --seconds as alone.
+running=0
+for t in "${targets[@]}"; do
+  rm -rf "${artifacts:?}/$t"
+  mkdir -p "$work/$t/corpus" "$work/$t/tmp" "$artifacts/$t"
+  cp "$root/fuzz/corpus/$t/"* "$work/$t/corpus/"
+  fuzz_target "$t" &
+  running=$((running + 1))
+  if ((running >= jobs)); then
+    wait -n
+    running=$((running - 1))
+  fi
+done
+wait
+
+# The results, in the targets' order.
+clean=0
+for t in "${targets[@]}"; do
+  status="$(cat "$work/$t/status" 2>/dev/null || echo "?")"
   # The final stats, or the last status line of a run that did not get there.
   runs="$(sed -n 's/^stat::number_of_executed_units: *//p' "$logs/$t.log" | tail -n 1)"
   [ -n "$runs" ] || runs="$(sed -n 's/^#\([0-9][0-9]*\).*/\1/p' "$logs/$t.log" | tail -n 1)"
