@@ -172,6 +172,10 @@ int main(int argc, char** argv) {
     setup.scenePath = takeOption(argc, argv, "--scene");
     const std::string quality = takeOption(argc, argv, "--bvh-quality");
     benchmark::Initialize(&argc, argv);
+    if (!setup.meshPath.empty() && !setup.scenePath.empty()) {
+        std::fprintf(stderr, "bench_primary_rays: --mesh and --scene exclude each other\n");
+        return 2;
+    }
     try {
         if (!quality.empty()) setup.quality = strahl::bvhQualityFromName(quality);
         fixture(setup);
