@@ -21,22 +21,19 @@ all_targets=(fuzz_scene_json fuzz_mitsuba_xml fuzz_pbrt fuzz_ply fuzz_serialized
 seconds=30
 jobs="$(nproc)"
 targets=()
+# Ends the script with a usage error unless option $1's value $2 is a positive
+# whole number.
+need_positive() {
+  [[ "${2:-}" =~ ^[0-9]+$ && "$2" -gt 0 ]] || {
+    echo "fuzz: $1 needs a positive whole number" >&2
+    exit 2
+  }
+}
 while (($#)); do
   case "$1" in
-    --seconds)
-      [[ $# -ge 2 && "$2" =~ ^[0-9]+$ && "$2" -gt 0 ]] || {
-        echo "fuzz: --seconds needs a positive whole number" >&2
-        exit 2
-      }
-      seconds="$2"
-      shift 2
-      ;;
-    --jobs)
-      [[ $# -ge 2 && "$2" =~ ^[0-9]+$ && "$2" -gt 0 ]] || {
-        echo "fuzz: --jobs needs a positive whole number" >&2
-        exit 2
-      }
-      jobs="$2"
+    --seconds | --jobs)
+      need_positive "$1" "${2:-}"
+      if [ "$1" = --seconds ]; then seconds="$2"; else jobs="$2"; fi
       shift 2
       ;;
     -h | --help)
