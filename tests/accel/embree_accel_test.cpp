@@ -80,7 +80,7 @@ TEST(EmbreeAccel, ReportsBuildProgress) {
 }
 
 template <int N>
-void expectPacketsMatchSingleRays() {
+void expectMeshPacketsMatchSingleRays() {
     const TriangleMesh soup = randomSoup(2000, 11);
     const TriangleMesh* meshes[] = {&soup};
     const auto accel = buildEmbreeAccel(meshes, {});
@@ -119,8 +119,8 @@ void expectPacketsMatchSingleRays() {
     EXPECT_GT(hits, 100);  // the test exercised real hits
 }
 
-TEST(EmbreeAccel, Packets16MatchSingleRays) { expectPacketsMatchSingleRays<16>(); }
-TEST(EmbreeAccel, Packets8MatchSingleRays) { expectPacketsMatchSingleRays<8>(); }
+TEST(EmbreeAccel, Packets16MatchSingleRays) { expectMeshPacketsMatchSingleRays<16>(); }
+TEST(EmbreeAccel, Packets8MatchSingleRays) { expectMeshPacketsMatchSingleRays<8>(); }
 
 TEST(EmbreeAccel, NativeWidthIsAPacketWidth) {
     const TriangleMesh q = test::unitQuad(0.0f);

@@ -129,7 +129,7 @@ TEST(EmbreeSpheres, RejectsBadSpheres) {
 }
 
 template <int N>
-void expectPacketsMatchSingleRays() {
+void expectSpherePacketsMatchSingleRays() {
     const auto accel = buildEmbreeSphereAccel(kSpheres, {});
     Pcg32 rng(23, 4);
     int hits = 0;
@@ -163,8 +163,8 @@ void expectPacketsMatchSingleRays() {
     EXPECT_GT(hits, 20 * N);  // the test exercised real hits
 }
 
-TEST(EmbreeSpheres, Packets16MatchSingleRays) { expectPacketsMatchSingleRays<16>(); }
-TEST(EmbreeSpheres, Packets8MatchSingleRays) { expectPacketsMatchSingleRays<8>(); }
+TEST(EmbreeSpheres, Packets16MatchSingleRays) { expectSpherePacketsMatchSingleRays<16>(); }
+TEST(EmbreeSpheres, Packets8MatchSingleRays) { expectSpherePacketsMatchSingleRays<8>(); }
 
 }  // namespace
 }  // namespace strahl

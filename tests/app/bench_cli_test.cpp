@@ -19,11 +19,11 @@ using test::contains;
 using test::RunResult;
 using test::runStrahl;
 
-const std::string kSmall = "bench --ladder 1e2,1e3 --models none --resolution 32 --repeats 1 --path none -q ";
+const std::string kSmallBench = "bench --ladder 1e2,1e3 --models none --resolution 32 --repeats 1 --path none -q ";
 
 TEST(BenchCli, ASmallRunPrintsTheTableAndWritesItsFiles) {
     const fs::path dir = test::scratchDir("bench-cli");
-    const RunResult r = runStrahl(kSmall + "--out " + (dir / "r.csv").string() + " --plot " +
+    const RunResult r = runStrahl(kSmallBench + "--out " + (dir / "r.csv").string() + " --plot " +
                                   (dir / "cost.svg").string());
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_TRUE(contains(r.out, "ladder-1e2")) << r.out;
@@ -48,9 +48,9 @@ TEST(BenchCli, BadInputIsOneClearError) {
                                               "triangles is outside [100, 100000000]"},
         {"bench --ladder many --models none", "strahl: error: bench: 'many' is not a triangle count"},
         {"bench --ladder none --models none --path none", "strahl: error: bench: nothing to measure"},
-        {kSmall + "--out " + (dir / "missing/r.csv").string(),
+        {kSmallBench + "--out " + (dir / "missing/r.csv").string(),
          "strahl: error: --out " + (dir / "missing/r.csv").string() + ": the folder "},
-        {kSmall + "--plot " + (dir / "cost.png").string(), "give a .svg file"},
+        {kSmallBench + "--plot " + (dir / "cost.png").string(), "give a .svg file"},
     };
     for (const Case& c : cases) {
         const RunResult r = runStrahl(c.args);

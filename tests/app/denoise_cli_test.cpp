@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <string>
 
+#include "app/app_test_helpers.h"
 #include "app/cli_runner.h"
 #include "app/exr_file.h"
 #include "test_support.h"
@@ -20,8 +21,8 @@ namespace {
 namespace fs = std::filesystem;
 using test::runStrahl;
 
-const std::string kScene = (test::sourceDir() / "scenes/default.json").string();
-const std::string kFlags = " --width 24 --height 20 -q --exr-float";
+using test::kDefaultScene;
+const std::string kDenoiseFlags = " --width 24 --height 20 -q --exr-float";
 const std::string kSpp = " --spp 6";
 
 // The values of the named channels, in pixel order.
@@ -60,8 +61,9 @@ class DenoiseCli : public testing::Test {
 protected:
     static void SetUpTestSuite() {
         dir_ = test::scratchDir("denoise-cli");
-        const test::RunResult r = runStrahl("render " + kScene + kFlags + kSpp + " --denoise -o " +
-                                            path("denoised.exr") + " -o " + path("denoised.png"));
+        const test::RunResult r =
+            runStrahl("render " + kDefaultScene + kDenoiseFlags + kSpp + " --denoise -o " +
+                      path("denoised.exr") + " -o " + path("denoised.png"));
         ASSERT_EQ(r.status, 0) << r.err;
     }
     static std::string path(const std::string& name) { return (dir_ / name).string(); }
@@ -84,7 +86,7 @@ TEST_F(DenoiseCli, WritesTheDenoisedBeautyWithNoisyFeatureAndHalfLayers) {
 }
 
 TEST_F(DenoiseCli, TheSceneKeyIsTheFlag) {
-    const test::RunResult r = runStrahl("render " + kScene + kFlags + kSpp +
+    const test::RunResult r = runStrahl("render " + kDefaultScene + kDenoiseFlags + kSpp +
                                         " --set /render/denoise=true -o " + path("key.exr"));
     ASSERT_EQ(r.status, 0) << r.err;
     test::expectIdentical(test::readExr(path("denoised.exr")), test::readExr(path("key.exr")),
@@ -102,7 +104,7 @@ TEST_F(DenoiseCli, TheDenoiseCommandGivesTheRendersImage) {
 }
 
 TEST_F(DenoiseCli, IsTheSameForAnyThreadCount) {
-    const test::RunResult r = runStrahl("render " + kScene + kFlags + kSpp +
+    const test::RunResult r = runStrahl("render " + kDefaultScene + kDenoiseFlags + kSpp +
                                         " --denoise --threads 1 -o " + path("one-thread.exr"));
     ASSERT_EQ(r.status, 0) << r.err;
     test::expectIdentical(test::readExr(path("denoised.exr")),
@@ -112,7 +114,7 @@ TEST_F(DenoiseCli, IsTheSameForAnyThreadCount) {
 TEST_F(DenoiseCli, MergedPartsDenoiseToTheSingleRender) {
     for (const auto& [name, flags] : {std::pair<std::string, std::string>{"p0", " --spp 3"},
                                       {"p1", " --spp 3 --sample-offset 3"}}) {
-        const test::RunResult r = runStrahl("render " + kScene + kFlags + flags +
+        const test::RunResult r = runStrahl("render " + kDefaultScene + kDenoiseFlags + flags +
                                             (name == "p0" ? " --sample-offset 0" : "") +
                                             " --denoise -o " + path(name + ".exr"));
         ASSERT_EQ(r.status, 0) << name << ": " << r.err;
@@ -135,7 +137,7 @@ TEST_F(DenoiseCli, MergedPartsDenoiseToTheSingleRender) {
 }
 
 TEST_F(DenoiseCli, ACropIsDenoisedInItsDataWindow) {
-    const test::RunResult r = runStrahl("render " + kScene + kFlags + kSpp +
+    const test::RunResult r = runStrahl("render " + kDefaultScene + kDenoiseFlags + kSpp +
                                         " --denoise --crop 4,2,20,16 -o " + path("crop.exr"));
     ASSERT_EQ(r.status, 0) << r.err;
     const test::ExrFile crop = test::readExr(path("crop.exr"));
@@ -153,12 +155,12 @@ TEST_F(DenoiseCli, ACheckpointedRenderResumesAndDenoisesAtTheEnd) {
     // Stopped after the first pass (one sample: not denoised, a note says
     // so), then resumed: the image of the uninterrupted render.
     const std::string checkpoint = path("d.ckpt");
-    test::RunResult r =
-        runStrahl("render " + kScene + kFlags + kSpp + " --denoise --time-limit 0 --checkpoint " +
-                  checkpoint + " -o " + path("cut.exr"));
+    test::RunResult r = runStrahl("render " + kDefaultScene + kDenoiseFlags + kSpp +
+                                  " --denoise --time-limit 0 --checkpoint " + checkpoint + " -o " +
+                                  path("cut.exr"));
     ASSERT_EQ(r.status, 0) << r.err;
-    r = runStrahl("render " + kScene + kFlags + kSpp + " --denoise --resume " + checkpoint +
-                  " -o " + path("resumed.exr"));
+    r = runStrahl("render " + kDefaultScene + kDenoiseFlags + kSpp + " --denoise --resume " +
+                  checkpoint + " -o " + path("resumed.exr"));
     ASSERT_EQ(r.status, 0) << r.err;
     test::expectIdentical(test::readExr(path("denoised.exr")), test::readExr(path("resumed.exr")),
                           "resumed vs uninterrupted");
@@ -174,25 +176,25 @@ void expectRefused(const test::RunResult& r, const std::string& needle, const fs
 
 TEST_F(DenoiseCli, BadInputIsOneClearError) {
     // An EXR without the layers: rendered without --denoise.
-    ASSERT_EQ(
-        runStrahl("render " + kScene + kFlags + kSpp + " --aov variance -o " + path("plain.exr"))
-            .status,
-        0);
+    ASSERT_EQ(runStrahl("render " + kDefaultScene + kDenoiseFlags + kSpp + " --aov variance -o " +
+                        path("plain.exr"))
+                  .status,
+              0);
     expectRefused(runStrahl("denoise " + path("plain.exr") + " -o " + path("out.exr")),
                   "lacks the denoiser's layers half0, half1", path("out.exr"));
     expectRefused(runStrahl("denoise " + path("missing.exr") + " -o " + path("out.exr")),
                   "missing.exr: no such file", path("out.exr"));
     expectRefused(runStrahl("denoise " + path("denoised.png") + " -o " + path("out.exr")),
                   "not an OpenEXR image", path("out.exr"));
-    expectRefused(
-        runStrahl("render " + kScene + kFlags + " --spp 1 --denoise -o " + path("one.exr")),
-        "at least 2 samples per pixel", path("one.exr"));
-    expectRefused(runStrahl("render " + kScene + kFlags +
+    expectRefused(runStrahl("render " + kDefaultScene + kDenoiseFlags + " --spp 1 --denoise -o " +
+                            path("one.exr")),
+                  "at least 2 samples per pixel", path("one.exr"));
+    expectRefused(runStrahl("render " + kDefaultScene + kDenoiseFlags +
                             " --denoise --algorithm raster --integrator eyelight --spp 1 -o " +
                             path("raster.exr")),
                   "needs the ray tracer", path("raster.exr"));
-    expectRefused(runStrahl("render " + kScene + kFlags + kSpp + " --set /render/denoise=3 -o " +
-                            path("bad-key.exr")),
+    expectRefused(runStrahl("render " + kDefaultScene + kDenoiseFlags + kSpp +
+                            " --set /render/denoise=3 -o " + path("bad-key.exr")),
                   "denoise", path("bad-key.exr"));
 }
 

@@ -20,6 +20,7 @@
 #include <thread>
 #include <vector>
 
+#include "app/app_test_helpers.h"
 #include "app/cli_runner.h"
 #include "app/exr_file.h"
 #include "test_support.h"
@@ -34,8 +35,8 @@ using test::runStrahl;
 
 // Path-traced, with glass, metals, implicit and parametric shapes: every pixel
 // is a long sum, so any difference in sample order would show in the bits.
-const std::string kScene = (test::sourceDir() / "scenes/statistical/glossy_room.json").string();
-const std::string kFlags = " --width 48 --height 36 --spp 4 -q";
+using test::kGlossyRoom;
+const std::string kFarmFlags = " --width 48 --height 36 --spp 4 -q";
 
 using test::ExrFile;
 using test::expectIdentical;
@@ -59,7 +60,7 @@ void expectError(const test::RunResult& r, int status, const std::string& messag
 }
 
 test::RunResult render(const std::string& args) {
-    return runStrahl("render " + kScene + kFlags + " " + args);
+    return runStrahl("render " + kGlossyRoom + kFarmFlags + " " + args);
 }
 
 TEST(FarmHelp, HelpListsTheFarmOptionsAndAssemble) {
@@ -169,13 +170,13 @@ TEST(FarmSkipExisting, RendersAgainWhatIsPartialOrMadeWithOtherSettings) {
     const fs::path dir = test::scratchDir("farm-skip-partial");
     const fs::path out = dir / "a.exr";
     // A time limit of 0 s stops after one of 16 passes: a partial image.
-    ASSERT_EQ(runStrahl("render " + kScene + " --width 48 --height 36 --spp 16 -q --time-limit 0 "
-                        "-o " + out.string())
+    ASSERT_EQ(runStrahl("render " + kGlossyRoom +
+                        " --width 48 --height 36 --spp 16 -q --time-limit 0 -o " + out.string())
                   .status,
               0);
     ASSERT_EQ(readExr(out).partial, "1");
-    const std::string args =
-        "render " + kScene + " --width 48 --height 36 --spp 16 --skip-existing -o " + out.string();
+    const std::string args = "render " + kGlossyRoom +
+                             " --width 48 --height 36 --spp 16 --skip-existing -o " + out.string();
     test::RunResult r = runStrahl(args);
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_TRUE(contains(r.err, "a.exr is partial (stopped by time limit): rendering it again"))
@@ -186,7 +187,7 @@ TEST(FarmSkipExisting, RendersAgainWhatIsPartialOrMadeWithOtherSettings) {
     EXPECT_TRUE(contains(r.err, "skipped")) << r.err;
 
     // Other samples per pixel: another image (strahl:fingerprint), rendered.
-    r = runStrahl("render " + kScene + " --width 48 --height 36 --spp 8 --skip-existing -o " +
+    r = runStrahl("render " + kGlossyRoom + " --width 48 --height 36 --spp 8 --skip-existing -o " +
                   out.string());
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_TRUE(contains(r.err, "was rendered with other settings")) << r.err;
@@ -194,7 +195,7 @@ TEST(FarmSkipExisting, RendersAgainWhatIsPartialOrMadeWithOtherSettings) {
 
     // A damaged file is not complete either.
     test::writeFile(out, "not an image");
-    r = runStrahl("render " + kScene + " --width 48 --height 36 --spp 8 --skip-existing -o " +
+    r = runStrahl("render " + kGlossyRoom + " --width 48 --height 36 --spp 8 --skip-existing -o " +
                   out.string());
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_TRUE(contains(r.err, "cannot be read")) << r.err;
@@ -205,7 +206,7 @@ TEST(FarmSkipExisting, JpegAloneCannotVouchForItself) {
     const fs::path dir = test::scratchDir("farm-skip-jpeg");
     const std::string jpeg = " -o " + (dir / "a.jpg").string();
     ASSERT_EQ(render(jpeg).status, 0);
-    test::RunResult r = runStrahl("render " + kScene + " --width 48 --height 36 --spp 4 "
+    test::RunResult r = runStrahl("render " + kGlossyRoom + " --width 48 --height 36 --spp 4 "
                                   "--skip-existing" + jpeg);
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_TRUE(contains(r.err, "JPEG and TIFF images do not record whether they are partial"))
@@ -214,7 +215,8 @@ TEST(FarmSkipExisting, JpegAloneCannotVouchForItself) {
     // With an EXR next to it, the pair is skipped.
     const std::string both = jpeg + " -o " + (dir / "a.exr").string();
     ASSERT_EQ(render(both).status, 0);
-    r = runStrahl("render " + kScene + " --width 48 --height 36 --spp 4 --skip-existing" + both);
+    r = runStrahl("render " + kGlossyRoom + " --width 48 --height 36 --spp 4 --skip-existing" +
+                  both);
     EXPECT_TRUE(contains(r.err, "skipped: every output exists and is complete")) << r.err;
 }
 
@@ -263,7 +265,7 @@ TEST(FarmRegion, TheScenesFilmCropIsTheCropUnlessTheCommandLineGivesOne) {
     EXPECT_EQ(readExr(dir / "region.exr").width, 8);
     // A film made smaller than the scene's crop from the command line: the
     // crop is checked against the size the command line gives.
-    expectError(runStrahl("render " + kScene + " --height 36 --spp 4 --width 30" + sceneCrop +
+    expectError(runStrahl("render " + kGlossyRoom + " --height 36 --spp 4 --width 30" + sceneCrop +
                           " -o " + (dir / "small.exr").string()),
                 1, "/film/crop/2: must be between 9 and 30, got 40", dir, 3);
 }
@@ -386,10 +388,12 @@ TEST(FarmAssembleErrors, GapsAndPartialRegionsOnlyOnRequestAndMarkedPartial) {
 
     // A time-limited region: partial. An error unless --allow-partial.
     const fs::path cut = dir / "cut.exr";
-    ASSERT_EQ(runStrahl("render " + kScene + " --width 48 --height 36 --spp 4 -q --time-limit 0 "
-                        "--region 16 20 48 36 -o " + cut.string())
-                  .status,
-              0);
+    ASSERT_EQ(
+        runStrahl("render " + kGlossyRoom +
+                  " --width 48 --height 36 --spp 4 -q --time-limit 0 --region 16 20 48 36 -o " +
+                  cut.string())
+            .status,
+        0);
     const size_t files = filesIn(dir);
     expectError(runStrahl("assemble " + regions[0].string() + " " + regions[1].string() + " " +
                           cut.string() + " -o " + out.string()),
@@ -415,7 +419,7 @@ std::vector<json> jsonLines(const std::string& text) {
 TEST(FarmProgress, JsonLinesOnStdoutFromStartToDone) {
     const fs::path dir = test::scratchDir("farm-progress");
     const fs::path out = dir / "a.0005.exr";
-    const test::RunResult r = runStrahl("render " + kScene +
+    const test::RunResult r = runStrahl("render " + kGlossyRoom +
                                         " --width 48 --height 36 --spp 4 --frame 5 -o " +
                                         (dir / "a.####.exr").string() + " --progress-format json");
     ASSERT_EQ(r.status, 0) << r.err;
@@ -424,7 +428,7 @@ TEST(FarmProgress, JsonLinesOnStdoutFromStartToDone) {
     ASSERT_GE(events.size(), 6u) << r.out;
 
     EXPECT_EQ(events.front()["event"], "start");
-    EXPECT_EQ(events.front()["scene"], kScene);
+    EXPECT_EQ(events.front()["scene"], kGlossyRoom);
     EXPECT_EQ(events.front()["frame"], 5);
     EXPECT_EQ(events.front()["resolution"], json::array({48, 36}));
     EXPECT_EQ(events.front()["region"], json::array({0, 0, 48, 36}));
@@ -458,7 +462,7 @@ TEST(FarmProgress, JsonLinesOnStdoutFromStartToDone) {
 
 TEST(FarmProgress, AnErrorEndsTheJsonStreamToo) {
     const fs::path dir = test::scratchDir("farm-progress-error");
-    const test::RunResult r = runStrahl("render " + kScene +
+    const test::RunResult r = runStrahl("render " + kGlossyRoom +
                                         " --width 48 --height 36 --region 0 0 64 8 -o " +
                                         (dir / "a.exr").string() + " --progress-format json");
     EXPECT_EQ(r.status, 1);
@@ -483,15 +487,15 @@ json readJsonFile(const fs::path& file) {
 TEST(FarmStats, TheStatsFileHasEveryDocumentedField) {
     const fs::path dir = test::scratchDir("farm-stats");
     const fs::path image = dir / "a.exr";
-    const test::RunResult r =
-        runStrahl("render " + kScene + " --width 48 --height 36 --spp 4 --threads 2 -q --region "
-                  "8 0 48 36 --frame 9 -o " + image.string() + " --stats " +
-                  (dir / "stats.#.json").string());
+    const test::RunResult r = runStrahl(
+        "render " + kGlossyRoom +
+        " --width 48 --height 36 --spp 4 --threads 2 -q --region 8 0 48 36 --frame 9 -o " +
+        image.string() + " --stats " + (dir / "stats.#.json").string());
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(filesIn(dir), 2u) << "no temporary file is left";
     const json s = readJsonFile(dir / "stats.9.json");
     EXPECT_EQ(s["strahl_version"], STRAHL_VERSION);
-    EXPECT_EQ(s["scene"], kScene);
+    EXPECT_EQ(s["scene"], kGlossyRoom);
     EXPECT_EQ(s["frame"], 9);
     EXPECT_EQ(s["resolution"], json::array({48, 36}));
     EXPECT_EQ(s["region"], json::array({8, 0, 48, 36}));
@@ -539,10 +543,10 @@ TEST(FarmStats, AnUnwritableStatsPathFailsBeforeTheRender) {
 
 TEST(FarmStats, ATimeLimitIsMarkedInStatsAndTheLastEvent) {
     const fs::path dir = test::scratchDir("farm-stats-limit");
-    const test::RunResult r = runStrahl(
-        "render " + kScene + " --width 48 --height 36 --spp 16 -q --time-limit 0 -o " +
-        (dir / "a.exr").string() + " --stats " + (dir / "s.json").string() +
-        " --progress-format json");
+    const test::RunResult r = runStrahl("render " + kGlossyRoom +
+                                        " --width 48 --height 36 --spp 16 -q --time-limit 0 -o " +
+                                        (dir / "a.exr").string() + " --stats " +
+                                        (dir / "s.json").string() + " --progress-format json");
     ASSERT_EQ(r.status, 0) << r.err;
     const json s = readJsonFile(dir / "s.json");
     EXPECT_EQ(s["status"], "time limit");
@@ -564,7 +568,7 @@ TEST(FarmStats, AnInterruptIsMarkedInStatsAndTheLastEvent) {
     const pid_t pid = fork();
     if (pid == 0) {
         const std::string command =
-            std::string(STRAHL_BINARY) + " render " + kScene +
+            std::string(STRAHL_BINARY) + " render " + kGlossyRoom +
             " --width 48 --height 36 --spp 256 -q -o " + (dir / "a.exr").string() +
             " --stats " + (dir / "s.json").string() + " --checkpoint " + checkpoint.string() +
             " --checkpoint-interval 0 --progress-format json >" + (dir / "out.txt").string() +

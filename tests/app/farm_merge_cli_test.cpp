@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "app/app_test_helpers.h"
 #include "app/cli_runner.h"
 #include "test_support.h"
 
@@ -24,17 +25,17 @@ using test::runStrahl;
 
 // Path tracing with glass and every geometry kind (long, varied paths); every
 // AOV, float channels, small.
-const std::string kScene = (test::sourceDir() / "scenes/statistical/glossy_room.json").string();
+using test::kGlossyRoom;
 const std::string kAovs =
     " --aov normal --aov depth --aov albedo --aov position --aov objectid --aov variance";
-const std::string kFlags = " --width 24 --height 18 -q --exr-float" + kAovs;
+const std::string kMergeFlags = " --width 24 --height 18 -q --exr-float" + kAovs;
 
 struct Exr {
     std::map<std::string, std::vector<float>> channels;  // by name, row-major
     std::map<std::string, std::string> attributes;       // strahl:* and a few more, as text
 };
 
-Exr readExr(const fs::path& file) {
+Exr readChannels(const fs::path& file) {
     Exr e;
     auto in = OIIO::ImageInput::open(file.string());
     if (!in) {
@@ -96,8 +97,8 @@ protected:
     }
     // `flags` after kFlags, or instead of them if `replace`.
     static void render(const std::string& name, const std::string& flags, bool replace = false) {
-        const test::RunResult r = runStrahl("render " + kScene + (replace ? "" : kFlags) + flags +
-                                            " -o " + path(name).string());
+        const test::RunResult r = runStrahl("render " + kGlossyRoom + (replace ? "" : kMergeFlags) +
+                                            flags + " -o " + path(name).string());
         ASSERT_EQ(r.status, 0) << name << ": " << r.err;
     }
     static fs::path path(const std::string& name) { return dir_ / (name + ".exr"); }
@@ -131,23 +132,23 @@ TEST_F(FarmMerge, PartsMergeIntoExactlyTheSingleRenderInAnyOrder) {
     EXPECT_NE(r.err.find("merged 3 parts: 6 samples per pixel, sample indices 0-6"),
               std::string::npos)
         << r.err;
-    const Exr merged = readExr(path("merged"));
+    const Exr merged = readChannels(path("merged"));
     // Every channel of the ordinary single render, and of the single render
     // written as a part (its exact sums included).
-    expectSameImage(readExr(path("single")), merged, "merged vs single render");
-    expectSameImage(readExr(path("single0")), merged, "merged vs single render's exact data");
+    expectSameImage(readChannels(path("single")), merged, "merged vs single render");
+    expectSameImage(readChannels(path("single0")), merged, "merged vs single render's exact data");
     EXPECT_EQ(merged.attributes.at("strahl:spp"), "6");
     EXPECT_EQ(merged.attributes.at("strahl:sample_ranges"), "\"0-6\"");
     EXPECT_EQ(merged.attributes.at("strahl:samples_begin"), "0");
     EXPECT_EQ(merged.attributes.at("strahl:samples_end"), "6");
     EXPECT_EQ(merged.attributes.at("strahl:partial"), "\"0\"");
     // An ordinary render carries no exact data.
-    const Exr single = readExr(path("single"));
+    const Exr single = readChannels(path("single"));
     for (const auto& [name, values] : single.channels) EXPECT_NE(name.rfind("strahl.", 0), 0u);
     EXPECT_EQ(single.attributes.count("strahl:split_fingerprint"), 0u);
 
     ASSERT_EQ(merge({"p1", "p2", "p0"}, "reordered").status, 0);
-    const Exr reordered = readExr(path("reordered"));
+    const Exr reordered = readChannels(path("reordered"));
     for (const auto& [name, values] : merged.channels)
         EXPECT_EQ(values, reordered.channels.at(name)) << name;  // variance included: sorted first
 }
@@ -155,9 +156,10 @@ TEST_F(FarmMerge, PartsMergeIntoExactlyTheSingleRenderInAnyOrder) {
 TEST_F(FarmMerge, MergesMergeAndRangesNeedNotBeContiguous) {
     const test::RunResult gap = merge({"p2", "p0"}, "p02");
     ASSERT_EQ(gap.status, 0) << gap.err;
-    EXPECT_EQ(readExr(path("p02")).attributes.at("strahl:sample_ranges"), "\"0-2,5-6\"");
+    EXPECT_EQ(readChannels(path("p02")).attributes.at("strahl:sample_ranges"), "\"0-2,5-6\"");
     ASSERT_EQ(merge({"p1", "p02"}, "staged").status, 0);
-    expectSameImage(readExr(path("single0")), readExr(path("staged")), "merged in two stages");
+    expectSameImage(readChannels(path("single0")), readChannels(path("staged")),
+                    "merged in two stages");
     // The staged result holds 0-6: adding p1 again counts its samples twice.
     expectRefused({"staged", "p1"}, "twice");
 }
@@ -187,7 +189,7 @@ TEST_F(FarmMerge, PartsOfOtherRendersAreRefused) {
     render("crop", " --spp 1 --sample-offset 7 --crop 0,0,12,18");
     expectRefused({"p0", "crop"}, "data window 0,0,12,18 differs");
     const test::RunResult other =
-        runStrahl("render " + (test::sourceDir() / "scenes/default.json").string() + kFlags +
+        runStrahl("render " + (test::sourceDir() / "scenes/default.json").string() + kMergeFlags +
                   " --spp 1 --sample-offset 7 -o " + path("other").string());
     ASSERT_EQ(other.status, 0) << other.err;
     expectRefused({"p0", "other"}, "rendered with other settings than");
@@ -201,7 +203,8 @@ TEST_F(FarmMerge, PartsOfOtherRendersAreRefused) {
 TEST_F(FarmMerge, MissingAndNonExrInputsAreRefused) {
     expectRefused({"p0", "absent"}, path("absent").string() + ": cannot read: no such file");
     const fs::path png = dir_ / "picture.png";
-    ASSERT_EQ(runStrahl("render " + kScene + kFlags + " --spp 1 -o " + png.string()).status, 0);
+    ASSERT_EQ(
+        runStrahl("render " + kGlossyRoom + kMergeFlags + " --spp 1 -o " + png.string()).status, 0);
     const test::RunResult r =
         runStrahl("merge" + paths({"p0"}) + " " + png.string() + " -o " + path("refused").string());
     EXPECT_EQ(r.status, 1);
@@ -220,11 +223,11 @@ TEST_F(FarmMerge, APartResumesFromItsCheckpointAndOnlyAsThatPart) {
     // Stopped after its first pass, then resumed: the part that was asked for.
     render("resumed", " --spp 3 --sample-offset 2 --time-limit 0 --checkpoint " + checkpoint);
     render("resumed", " --spp 3 --sample-offset 2 --resume " + checkpoint);
-    const Exr resumed = readExr(path("resumed")), p1 = readExr(path("p1"));
+    const Exr resumed = readChannels(path("resumed")), p1 = readChannels(path("p1"));
     for (const auto& [name, values] : p1.channels)
         EXPECT_EQ(values, resumed.channels.at(name)) << name;
     // The offset is part of the checkpoint's fingerprint.
-    const test::RunResult r = runStrahl("render " + kScene + kFlags +
+    const test::RunResult r = runStrahl("render " + kGlossyRoom + kMergeFlags +
                                         " --spp 3 --sample-offset 3 --resume " + checkpoint +
                                         " -o " + path("other").string());
     EXPECT_EQ(r.status, 1);
@@ -238,7 +241,8 @@ TEST_F(FarmMerge, PlainImagesAreAveragedBySampleCountWithAWarning) {
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.err.find("strahl: warning: "), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("not bit-exact"), std::string::npos) << r.err;
-    const Exr a = readExr(path("plain2")), b = readExr(path("plain3")), m = readExr(path("mean"));
+    const Exr a = readChannels(path("plain2")), b = readChannels(path("plain3")),
+              m = readChannels(path("mean"));
     EXPECT_EQ(m.attributes.at("strahl:spp"), "5");
     EXPECT_EQ(m.channels.count("strahl.sum.R.0"), 0u);  // no exact data to pass on
     for (const char* channel : {"R", "G", "B", "albedo.G", "normal.Z"}) {
@@ -254,7 +258,7 @@ TEST_F(FarmMerge, PlainImagesAreAveragedBySampleCountWithAWarning) {
 TEST_F(FarmMerge, BadCommandLinesExitWithStatus2) {
     EXPECT_EQ(runStrahl("merge -o " + path("x").string()).status, 2);
     EXPECT_EQ(runStrahl("merge" + paths({"p0"})).status, 2);
-    EXPECT_EQ(runStrahl("render " + kScene + kFlags + " --sample-offset -1 -o " +
+    EXPECT_EQ(runStrahl("render " + kGlossyRoom + kMergeFlags + " --sample-offset -1 -o " +
                         path("x").string()).status,
               2);
     EXPECT_FALSE(fs::exists(path("x")));

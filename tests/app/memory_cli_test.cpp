@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <string>
 
+#include "app/app_test_helpers.h"
 #include "app/cli_runner.h"
 #include "strahl/scene/scene_builder.h"
 #include "test_support.h"
@@ -22,8 +23,8 @@ using test::RunResult;
 using test::runStrahl;
 using testing::HasSubstr;
 
-const std::string kScene = (test::sourceDir() / "scenes/default.json").string();
-const std::string kSmall = " --width 32 --height 24 --spp 1";
+using test::kDefaultScene;
+const std::string kSmallRender = " --width 32 --height 24 --spp 1";
 
 TEST(MemoryCli, EveryBvhQualityAndCompactModeRenders) {
     const fs::path dir = test::scratchDir("memory-cli-quality");
@@ -31,7 +32,7 @@ TEST(MemoryCli, EveryBvhQualityAndCompactModeRenders) {
                               "--compact", "--no-compact", "--bvh-quality low --no-compact"}) {
         const fs::path out = dir / "a.exr";
         fs::remove(out);
-        const RunResult r = runStrahl("render " + kScene + kSmall + " " + flags + " -o " + out.string());
+        const RunResult r = runStrahl("render " + kDefaultScene + kSmallRender + " " + flags + " -o " + out.string());
         EXPECT_EQ(r.status, 0) << flags << ": " << r.err;
         EXPECT_TRUE(fs::exists(out)) << flags;
         EXPECT_THAT(r.err, HasSubstr("memory: shapes ")) << flags;
@@ -43,15 +44,15 @@ TEST(MemoryCli, ALimitTheSceneCannotFitStopsCleanlyWithoutAnImage) {
     const fs::path dir = test::scratchDir("memory-cli-limit");
     const fs::path out = dir / "a.exr";
     // 1 MiB: less than the process itself holds once the scene is loaded.
-    const RunResult r =
-        runStrahl("render " + kScene + kSmall + " -q --memory-limit 1M -o " + out.string());
+    const RunResult r = runStrahl("render " + kDefaultScene + kSmallRender +
+                                  " -q --memory-limit 1M -o " + out.string());
     EXPECT_EQ(r.status, 1) << r.err;
     EXPECT_THAT(r.err, HasSubstr("default.json: loading the scene took "));
     EXPECT_THAT(r.err, HasSubstr("more than the memory limit of 1.00 MiB"));
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_FALSE(fs::exists(out));
     // A generous limit changes nothing.
-    const RunResult ok = runStrahl("render " + kScene + kSmall + " --memory-limit 16G -o " + out.string());
+    const RunResult ok = runStrahl("render " + kDefaultScene + kSmallRender + " --memory-limit 16G -o " + out.string());
     EXPECT_EQ(ok.status, 0) << ok.err;
     EXPECT_TRUE(fs::exists(out));
 }
@@ -59,14 +60,15 @@ TEST(MemoryCli, ALimitTheSceneCannotFitStopsCleanlyWithoutAnImage) {
 TEST(MemoryCli, BadSizesAndQualitiesAreUsageErrors) {
     for (const char* flags : {"--memory-limit 8X", "--memory-limit 0", "--memory-limit lots",
                               "--bvh-quality best"}) {
-        const RunResult r = runStrahl("render " + kScene + kSmall + " " + flags + " -o /tmp/x.exr");
+        const RunResult r =
+            runStrahl("render " + kDefaultScene + kSmallRender + " " + flags + " -o /tmp/x.exr");
         EXPECT_EQ(r.status, 2) << flags << ": " << r.err;
         EXPECT_THAT(r.err, HasSubstr("strahl: error: ")) << flags;
     }
 }
 
 TEST(MemoryCli, InfoReportsBvhMemoryPerTriangleAndPeakResident) {
-    const RunResult r = runStrahl("info " + kScene + " --bvh-quality low");
+    const RunResult r = runStrahl("info " + kDefaultScene + " --bvh-quality low");
     EXPECT_EQ(r.status, 0) << r.err;
     // The default scene is small: not compact unless asked for (useCompactBvh).
     EXPECT_THAT(r.out, HasSubstr("(low, not compact (auto), "));
@@ -75,7 +77,7 @@ TEST(MemoryCli, InfoReportsBvhMemoryPerTriangleAndPeakResident) {
          {std::pair{" --no-compact", "(medium, not compact, "},
           std::pair{" --compact", "(medium, compact, "},
           std::pair{" --memory-limit 16G", "(medium, compact (auto), "}}) {
-        const RunResult run = runStrahl("info " + kScene + flag);
+        const RunResult run = runStrahl("info " + kDefaultScene + flag);
         EXPECT_EQ(run.status, 0) << flag << ": " << run.err;
         EXPECT_THAT(run.out, HasSubstr(layout)) << flag;
     }

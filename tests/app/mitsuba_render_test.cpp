@@ -148,24 +148,25 @@ TEST(MitsubaConvert, TheConvertedSceneRendersTheSameImageBitForBit) {
   <emitter type="point"><point name="position" x="2" y="2" z="2"/><rgb name="intensity" value="3"/></emitter>
 </scene>)");
     const std::string xml = (dir / "scene.xml").string();
-    const fs::path json = dir / "converted/scene.json";
-    test::RunResult r = test::runStrahl("convert " + xml + " -o " + json.string());
+    const fs::path convertedScene = dir / "converted/scene.json";
+    test::RunResult r = test::runStrahl("convert " + xml + " -o " + convertedScene.string());
     EXPECT_EQ(r.status, 1);
     EXPECT_TRUE(test::contains(r.err, "converted' does not exist")) << r.err;
     fs::create_directories(dir / "converted");
-    r = test::runStrahl("convert " + xml + " -D spp=5 -o " + json.string());
+    r = test::runStrahl("convert " + xml + " -D spp=5 -o " + convertedScene.string());
     ASSERT_EQ(r.status, 0) << r.err;
-    EXPECT_TRUE(test::contains(test::readFile(json), "\"../meshes/tri.obj\"")) << test::readFile(json);
+    EXPECT_TRUE(test::contains(test::readFile(convertedScene), "\"../meshes/tri.obj\"")) << test::readFile(convertedScene);
     r = test::runStrahl("render " + xml + " -D spp=5 --exr-float -q -o " + (dir / "xml.exr").string());
     ASSERT_EQ(r.status, 0) << r.err;
-    r = test::runStrahl("render " + json.string() + " --exr-float -q -o " + (dir / "json.exr").string());
+    r = test::runStrahl("render " + convertedScene.string() + " --exr-float -q -o " + (dir / "json.exr").string());
     ASSERT_EQ(r.status, 0) << r.err;
     const test::ExrFile fromXml = test::readExr(dir / "xml.exr");
     EXPECT_EQ(fromXml.samples, "5");
     test::expectIdentical(fromXml, test::readExr(dir / "json.exr"), "xml and converted json");
 
     // -D on a JSON scene, and a convert that fails, leave nothing behind.
-    r = test::runStrahl("render " + json.string() + " -D spp=3 -o " + (dir / "no.exr").string());
+    r = test::runStrahl("render " + convertedScene.string() + " -D spp=3 -o " +
+                        (dir / "no.exr").string());
     EXPECT_EQ(r.status, 1);
     EXPECT_TRUE(test::contains(r.err, "-D spp: strahl JSON scenes have no parameters")) << r.err;
     r = test::runStrahl("convert " + xml + " -D nothing=1 -o " + (dir / "no.json").string());

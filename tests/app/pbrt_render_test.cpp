@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 // A small scene with most of what the importer maps: a textured floor, a
 // sphere, an emitting quad, a point light, named and anonymous materials,
 // an object instanced twice.
-const char* kScene = R"(# pbrt-v4
+const char* kPbrtScene = R"(# pbrt-v4
 LookAt 0 2 6  0 0.7 0  0 1 0
 Camera "perspective" "float fov" [ 40 ]
 Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 16 ] "string filename" "ignored.exr"
@@ -60,15 +60,15 @@ Shape "trianglemesh" "point3 P" [ -4 0 -4  4 0 -4  4 0 4  -4 0 4 ] "integer indi
 
 TEST(PbrtConvert, TheConvertedSceneRendersTheSameImageBitForBit) {
     const fs::path dir = test::scratchDir("pbrt-convert");
-    test::writeFile(dir / "scene.pbrt", kScene);
+    test::writeFile(dir / "scene.pbrt", kPbrtScene);
     const std::string pbrt = (dir / "scene.pbrt").string();
-    const fs::path json = dir / "converted/scene.json";
+    const fs::path convertedScene = dir / "converted/scene.json";
     fs::create_directories(dir / "converted");
-    test::RunResult r = test::runStrahl("convert " + pbrt + " -o " + json.string());
+    test::RunResult r = test::runStrahl("convert " + pbrt + " -o " + convertedScene.string());
     ASSERT_EQ(r.status, 0) << r.err;
     r = test::runStrahl("render " + pbrt + " --exr-float -q -o " + (dir / "pbrt.exr").string());
     ASSERT_EQ(r.status, 0) << r.err;
-    r = test::runStrahl("render " + json.string() + " --exr-float -q -o " + (dir / "json.exr").string());
+    r = test::runStrahl("render " + convertedScene.string() + " --exr-float -q -o " + (dir / "json.exr").string());
     ASSERT_EQ(r.status, 0) << r.err;
     const test::ExrFile fromPbrt = test::readExr(dir / "pbrt.exr");
     EXPECT_EQ(fromPbrt.samples, "4");

@@ -15,6 +15,7 @@
 #include <thread>
 #include <vector>
 
+#include "app/app_test_helpers.h"
 #include "app/cli_runner.h"
 #include "app/exr_file.h"
 #include "test_support.h"
@@ -27,9 +28,9 @@ using test::runStrahl;
 
 // A path-traced scene with every geometry kind and glass (long, varied paths),
 // small enough for tests, rendered to float EXR with AOVs.
-const std::string kScene =
-    (test::sourceDir() / "scenes/statistical/glossy_room.json").string();
-const std::string kFlags = " --width 48 --height 36 --exr-float -q --aov variance --aov albedo";
+using test::kGlossyRoom;
+const std::string kReliabilityFlags =
+    " --width 48 --height 36 --exr-float -q --aov variance --aov albedo";
 
 using test::ExrFile;
 using test::expectIdentical;
@@ -37,7 +38,7 @@ using test::readExr;
 
 ExrFile renderWith(const fs::path& dir, const std::string& name, const std::string& flags) {
     const fs::path out = dir / (name + ".exr");
-    const test::RunResult r = runStrahl("render " + kScene + kFlags + " -o " + out.string() + flags);
+    const test::RunResult r = runStrahl("render " + kGlossyRoom + kReliabilityFlags + " -o " + out.string() + flags);
     EXPECT_EQ(r.status, 0) << r.err;
     return readExr(out);
 }
@@ -93,7 +94,7 @@ TEST_P(Interrupt, WritesAPartialImageAndResumesToTheSameImageBitForBit) {
     // Interval 0: a checkpoint after every pass; its appearance tells that the
     // render is under way. 64 spp at 48 x 36 lasts long enough to be caught.
     const fs::path checkpoint = dir / "render.ckpt", partial = dir / "partial.exr";
-    const pid_t pid = startStrahl("render " + kScene + kFlags + " --spp 64 -o " +
+    const pid_t pid = startStrahl("render " + kGlossyRoom + kReliabilityFlags + " --spp 64 -o " +
                                       partial.string() + " --checkpoint " + checkpoint.string() +
                                       " --checkpoint-interval 0",
                                   dir / "err.txt");
@@ -112,8 +113,9 @@ TEST_P(Interrupt, WritesAPartialImageAndResumesToTheSameImageBitForBit) {
     EXPECT_LT(std::stoi(cut.samples), 64);
 
     const fs::path resumed = dir / "resumed.exr";
-    const test::RunResult r = runStrahl("render " + kScene + kFlags + " --spp 64 -o " +
-                                        resumed.string() + " --resume " + checkpoint.string());
+    const test::RunResult r =
+        runStrahl("render " + kGlossyRoom + kReliabilityFlags + " --spp 64 -o " + resumed.string() +
+                  " --resume " + checkpoint.string());
     ASSERT_EQ(r.status, 0) << r.err;
     const ExrFile done = readExr(resumed);
     EXPECT_EQ(done.partial, "0");
@@ -140,16 +142,16 @@ TEST(Checkpoint, OtherSettingsOrAForeignFileAreOneClearError) {
     const fs::path checkpoint = dir / "c.ckpt";
     renderWith(dir, "full", " --spp 2 --checkpoint " + checkpoint.string());
     const fs::path out = dir / "other.exr";
-    test::RunResult r = runStrahl("render " + kScene + kFlags + " --spp 3 -o " + out.string() +
-                                  " --resume " + checkpoint.string());
+    test::RunResult r = runStrahl("render " + kGlossyRoom + kReliabilityFlags + " --spp 3 -o " +
+                                  out.string() + " --resume " + checkpoint.string());
     EXPECT_EQ(r.status, 1);
     EXPECT_TRUE(test::contains(r.err, "the checkpoint was made with other settings")) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_FALSE(fs::exists(out));
 
     test::writeFile(dir / "junk.ckpt", "not a checkpoint");
-    r = runStrahl("render " + kScene + kFlags + " --spp 2 -o " + out.string() + " --resume " +
-                  (dir / "junk.ckpt").string());
+    r = runStrahl("render " + kGlossyRoom + kReliabilityFlags + " --spp 2 -o " + out.string() +
+                  " --resume " + (dir / "junk.ckpt").string());
     EXPECT_EQ(r.status, 1);
     EXPECT_TRUE(test::contains(r.err, "junk.ckpt: not a strahl checkpoint")) << r.err;
     EXPECT_FALSE(fs::exists(out));

@@ -20,7 +20,7 @@ using test::contains;
 using test::readExr;
 using test::runStrahl;
 
-const std::string kQuad = R"({
+const std::string kDirectQuad = R"({
   "camera": { "eye": [0, 0, 3] },
   "film": { "width": 16, "height": 12 },
   "render": { "integrator": "direct", "spp": 1 },
@@ -31,8 +31,8 @@ const std::string kQuad = R"({
 
 TEST(ScenePatchCli, SetGivesTheImageOfTheFlagAndOfTheEditedFile) {
     const fs::path dir = test::scratchDir("set-cli-same");
-    test::writeFile(dir / "quad.json", kQuad);
-    std::string edited = kQuad;
+    test::writeFile(dir / "quad.json", kDirectQuad);
+    std::string edited = kDirectQuad;
     edited.replace(edited.find("\"spp\": 1"), 8, "\"spp\": 3");
     test::writeFile(dir / "edited.json", edited);
     const std::string scene = (dir / "quad.json").string();
@@ -52,7 +52,7 @@ TEST(ScenePatchCli, SetGivesTheImageOfTheFlagAndOfTheEditedFile) {
 
 TEST(ScenePatchCli, SetReachesEveryKeyAndALaterPatchWins) {
     const fs::path dir = test::scratchDir("set-cli-keys");
-    test::writeFile(dir / "quad.json", kQuad);
+    test::writeFile(dir / "quad.json", kDirectQuad);
     const fs::path out = dir / "a.exr";
     const test::RunResult r = runStrahl(
         "render " + (dir / "quad.json").string() + " -q --width 40 --set /film/width=24 " +
@@ -68,7 +68,7 @@ TEST(ScenePatchCli, SetReachesEveryKeyAndALaterPatchWins) {
 
 TEST(ScenePatchCli, BadPatchesAreClearErrorsWithoutOutput) {
     const fs::path dir = test::scratchDir("set-cli-bad");
-    test::writeFile(dir / "quad.json", kQuad);
+    test::writeFile(dir / "quad.json", kDirectQuad);
     const std::string render = "render " + (dir / "quad.json").string() + " -o " +
                                (dir / "a.exr").string() + " ";
     test::RunResult r = runStrahl(render + "--set /render/spp");
@@ -90,7 +90,7 @@ TEST(ScenePatchCli, BadPatchesAreClearErrorsWithoutOutput) {
 
 TEST(ScenePatchCli, SkipExistingRendersAgainWhenAPatchChangesTheImage) {
     const fs::path dir = test::scratchDir("set-cli-skip");
-    test::writeFile(dir / "quad.json", kQuad);
+    test::writeFile(dir / "quad.json", kDirectQuad);
     const std::string render = "render " + (dir / "quad.json").string() + " -o " +
                                (dir / "a.exr").string() + " --skip-existing ";
     ASSERT_EQ(runStrahl(render + "--set /lights/0/intensity=5").status, 0);
@@ -105,7 +105,7 @@ TEST(ScenePatchCli, SkipExistingRendersAgainWhenAPatchChangesTheImage) {
 
 TEST(ScenePatchCli, InfoTakesPatchesToo) {
     const fs::path dir = test::scratchDir("set-cli-info");
-    test::writeFile(dir / "quad.json", kQuad);
+    test::writeFile(dir / "quad.json", kDirectQuad);
     const test::RunResult r =
         runStrahl("info " + (dir / "quad.json").string() + " --set /shapes/0/indices=[0,1,2]");
     ASSERT_EQ(r.status, 0) << r.err;
@@ -117,7 +117,7 @@ TEST(ScenePatchCli, InfoTakesPatchesToo) {
 // image's metadata.
 TEST(ScenePatchCli, ClampFlagsArePatchesAndRecordedInTheImage) {
     const fs::path dir = test::scratchDir("clamp-cli");
-    test::writeFile(dir / "quad.json", kQuad);
+    test::writeFile(dir / "quad.json", kDirectQuad);
     const std::string scene = (dir / "quad.json").string() + " -q --integrator path";
     ASSERT_EQ(runStrahl("render " + scene + " --clamp-direct 0.25 -o " + (dir / "flag.exr").string()).status, 0);
     ASSERT_EQ(runStrahl("render " + scene + " --set /render/clamp_direct=0.25 -o " +
@@ -143,7 +143,7 @@ TEST(ScenePatchCli, ClampFlagsArePatchesAndRecordedInTheImage) {
 // --filter-glossy is a scene patch too, and biased: said in the image.
 TEST(ScenePatchCli, FilterGlossyIsAPatchAndRecordedInTheImage) {
     const fs::path dir = test::scratchDir("filter-glossy-cli");
-    test::writeFile(dir / "quad.json", kQuad);
+    test::writeFile(dir / "quad.json", kDirectQuad);
     const std::string scene = (dir / "quad.json").string() + " -q --integrator path";
     ASSERT_EQ(runStrahl("render " + scene + " --filter-glossy 0.5 -o " + (dir / "flag.exr").string()).status, 0);
     ASSERT_EQ(runStrahl("render " + scene + " --set /render/filter_glossy=0.5 -o " +
@@ -164,7 +164,7 @@ TEST(ScenePatchCli, FilterGlossyIsAPatchAndRecordedInTheImage) {
 
 TEST(ScenePatchCli, AdaptiveSamplingFlagsArePatchesAndRecordedInTheImage) {
     const fs::path dir = test::scratchDir("adaptive-cli");
-    test::writeFile(dir / "quad.json", kQuad);
+    test::writeFile(dir / "quad.json", kDirectQuad);
     const std::string scene = (dir / "quad.json").string() + " -q --integrator path --spp 8";
     ASSERT_EQ(runStrahl("render " + scene + " --adaptive-threshold 0.25 --adaptive-min-samples 4 -o " +
                         (dir / "flag.exr").string())

@@ -21,7 +21,7 @@ using test::contains;
 using test::RunResult;
 using test::runStrahl;
 
-const std::string kQuad = R"(
+const std::string kQuadMembers = R"(
   "camera": { "eye": [0, 0, 3] },
   "film": { "width": 16, "height": 12 },
   "render": { "integrator": "path", "spp": 1 },
@@ -29,12 +29,12 @@ const std::string kQuad = R"(
                 "positions": [[-1,-1,0],[1,-1,0],[1,1,0],[-1,1,0]], "indices": [0,1,2,0,2,3],
                 "uvs": [[0,0],[1,0],[1,1],[0,1]] } ])";
 
-// Renders `dir`/scene.json (kQuad plus `sections`) to an EXR and a PNG in
+// Renders `dir`/scene.json (kQuadMembers plus `sections`) to an EXR and a PNG in
 // `dir`/out, with `file` (a text file) next to the scene.
 RunResult renderWithFakeImage(const fs::path& dir, const std::string& file,
                               const std::string& sections) {
     test::writeFile(dir / file, "this is a text file, not an image\n");
-    test::writeFile(dir / "scene.json", "{" + sections + "," + kQuad + "}");
+    test::writeFile(dir / "scene.json", "{" + sections + "," + kQuadMembers + "}");
     fs::create_directories(dir / "out");
     return runStrahl("render " + (dir / "scene.json").string() + " -o " +
                      (dir / "out/x.exr").string() + " -o " + (dir / "out/x.png").string());

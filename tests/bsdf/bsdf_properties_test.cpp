@@ -18,13 +18,9 @@
 namespace strahl {
 namespace {
 
+using test::Case;
 using test::direction;
 using test::sampleHemisphere;
-
-struct Case {
-    std::string name;
-    Bsdf bsdf;
-};
 
 std::vector<Case> reflectionModels() {
     const MetalPreset iron = *findMetalPreset("iron");

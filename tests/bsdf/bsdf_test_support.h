@@ -28,6 +28,12 @@ inline Vec3 direction(float thetaDeg, float phiDeg = 0.0f) {
     return Vec3(std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t));
 }
 
+// One named BSDF of a table of cases that a test runs over.
+struct Case {
+    std::string name;
+    Bsdf bsdf;
+};
+
 // A coated conductor (Bsdf::coatedConductor) whose per-material layers live
 // to the end of the test program, as a material's would: eta and k of the
 // metal in vacuum, the coat's index, alphas of metal and coat, the layer's

@@ -13,21 +13,17 @@
 namespace strahl {
 namespace {
 
+using test::Case;
 using test::direction;
 using test::estimateAlbedo;
 
-constexpr int kSamples = 40000;
+constexpr int kFurnaceSamples = 40000;
 // Allowed excess beyond the 4-sigma noise band: float rounding, and for the
 // metallic-roughness BSDF the error of its tabulated specular albedo.
 constexpr float kSlack = 2e-3f;
 
-struct Case {
-    std::string name;
-    Bsdf bsdf;
-};
-
 void expectLossless(const Case& c, const Vec3& wo, uint64_t seed) {
-    const auto e = estimateAlbedo(c.bsdf, wo, kSamples, seed);
+    const auto e = estimateAlbedo(c.bsdf, wo, kFurnaceSamples, seed);
     for (int ch = 0; ch < 3; ++ch) {
         EXPECT_NEAR(e.mean[ch], 1.0f, 4.0f * e.stdError[ch] + kSlack)
             << c.name << " wo.z = " << wo.z << " channel " << ch;
@@ -67,7 +63,7 @@ TEST(WhiteFurnace, LowRoughnessGgxWithUnitFresnelIsLossless) {
     for (float theta : {0.0f, 30.0f, 60.0f}) expectLossless(c, direction(theta, 45.0f), seed++);
     // Smooth (delta) dielectric with tint: R + T scaled by the tint exactly.
     const Bsdf tinted = Bsdf::dielectric(1.5f, 0.0f, Color(0.5f, 0.25f, 1.0f));
-    const auto e = estimateAlbedo(tinted, direction(40.0f), kSamples, 7);
+    const auto e = estimateAlbedo(tinted, direction(40.0f), kFurnaceSamples, 7);
     EXPECT_NEAR(e.mean.r, 0.5f, 1e-5f);
     EXPECT_NEAR(e.mean.g, 0.25f, 1e-5f);
     EXPECT_NEAR(e.mean.b, 1.0f, 1e-5f);
@@ -124,7 +120,7 @@ TEST(WhiteFurnace, NoModelCreatesEnergy) {
         for (float theta : {0.0f, 30.0f, 60.0f, 80.0f, 89.0f}) {
             for (float side : {1.0f, -1.0f}) {
                 const Vec3 wo = side * direction(theta, 30.0f);
-                const auto e = estimateAlbedo(c.bsdf, wo, kSamples / 4, seed++);
+                const auto e = estimateAlbedo(c.bsdf, wo, kFurnaceSamples / 4, seed++);
                 EXPECT_LE(e.maxMean(), 1.0f + 4.0f * e.maxError() + kSlack)
                     << c.name << " theta = " << theta << " side " << side;
             }
@@ -134,10 +130,10 @@ TEST(WhiteFurnace, NoModelCreatesEnergy) {
 
 TEST(WhiteFurnace, OpaqueBsdfsAreTwoSidedMirrorImages) {
     const Bsdf b = Bsdf::plastic(Color(0.7f, 0.5f, 0.2f), 1.5f, 0.3f);
-    const auto up = estimateAlbedo(b, direction(50.0f, 10.0f), kSamples, 5);
+    const auto up = estimateAlbedo(b, direction(50.0f, 10.0f), kFurnaceSamples, 5);
     Vec3 down = direction(50.0f, 10.0f);
     down.z = -down.z;
-    const auto low = estimateAlbedo(b, down, kSamples, 5);
+    const auto low = estimateAlbedo(b, down, kFurnaceSamples, 5);
     for (int ch = 0; ch < 3; ++ch) EXPECT_FLOAT_EQ(up.mean[ch], low.mean[ch]);
 }
 

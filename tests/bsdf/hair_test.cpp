@@ -66,18 +66,18 @@ TEST(Hair, WithoutAbsorptionEverySampleWeighsOne) {
 
 TEST(Hair, SamplingFollowsThePdf) {
     const Color brown = Bsdf::hairSigmaAFromColor(Color(0.45f, 0.25f, 0.12f), 0.3f);
-    struct Case {
+    struct HairCase {
         Bsdf bsdf;
         Vec3 wo;
     };
-    const Case cases[] = {
+    const HairCase cases[] = {
         {Bsdf::hair(brown, 0.3f, 0.3f, 2.0f), direction(40, 20)},
         {Bsdf::hair(brown, 0.6f, 0.6f, 0.0f, 1.55f, 0.5f), direction(70, 120)},
         {Bsdf::hair(Color(0.0f), 0.25f, 0.8f, -3.0f), -direction(30, 60)},
     };
     const double significance = 1.0 - std::pow(0.99, 1.0 / 3.0);
     uint64_t seed = 101;
-    for (const Case& c : cases) {
+    for (const HairCase& c : cases) {
         const auto r = test::chi2Test(c.bsdf, c.wo, 200000, seed++, significance);
         EXPECT_TRUE(r.ok) << r.message;
         double total = 0.0;

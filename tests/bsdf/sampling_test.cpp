@@ -15,12 +15,8 @@
 namespace strahl {
 namespace {
 
+using test::Case;
 using test::direction;
-
-struct Case {
-    std::string name;
-    Bsdf bsdf;
-};
 
 // A principled BSDF with every lobe on (anisotropic, tinted, metallic,
 // clearcoated, sheened, flattened), transmitting `transmission`, or thin.

@@ -5,20 +5,14 @@
 #include <cmath>
 #include <vector>
 
+#include "core_test_helpers.h"
 #include "strahl/core/error.h"
 #include "strahl/core/rng.h"
 
 namespace strahl {
 namespace {
 
-// Upper 0.1% point of the chi-square distribution with k degrees of freedom
-// (Wilson-Hilferty approximation, accurate to ~1% for k >= 3): a correct
-// sampler fails a fixed-seed test at this level with probability 1/1000.
-double chiSquareCritical(int k) {
-    const double z = 3.0902;  // standard normal 99.9% quantile
-    const double a = 2.0 / (9.0 * k);
-    return k * std::pow(1.0 - a + z * std::sqrt(a), 3.0);
-}
+using test::chiSquareCritical;
 
 // Pearson's statistic over the bins with non-zero expectation.
 double chiSquare(const std::vector<int>& counts, const std::vector<double>& expected, int& dof) {

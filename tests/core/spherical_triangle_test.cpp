@@ -6,18 +6,14 @@
 #include <cmath>
 #include <vector>
 
+#include "core_test_helpers.h"
 #include "strahl/core/rng.h"
 #include "strahl/core/sampling.h"
 
 namespace strahl {
 namespace {
 
-// Upper 0.1% point of chi-square with k degrees of freedom (Wilson-Hilferty).
-double chiSquareCritical(int k) {
-    const double z = 3.0902;  // standard normal 99.9% quantile
-    const double a = 2.0 / (9.0 * k);
-    return k * std::pow(1.0 - a + z * std::sqrt(a), 3.0);
-}
+using test::chiSquareCritical;
 
 Vec2 next2D(Pcg32& rng) {
     const float x = rng.nextFloat();

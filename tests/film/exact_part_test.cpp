@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "film_test_helpers.h"
 #include "strahl/core/error.h"
 #include "strahl/film/exr_input.h"
 #include "strahl/film/image_output.h"
@@ -22,8 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::vector<AovKind> kAllAovs{AovKind::Normal,   AovKind::Depth,    AovKind::Albedo,
-                                    AovKind::Position, AovKind::ObjectId, AovKind::Variance};
+using test::kAllAovs;
 
 // A film with negative, tiny and large sums in every buffer.
 Film sampleFilm(const PixelRect& crop, const std::vector<AovKind>& aovs) {

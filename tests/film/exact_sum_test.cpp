@@ -11,6 +11,7 @@
 #include <limits>
 #include <vector>
 
+#include "film_test_helpers.h"
 #include "strahl/core/error.h"
 #include "strahl/core/rng.h"
 #include "strahl/film/film.h"
@@ -126,8 +127,7 @@ Film renderSamples(const PixelRect& crop, const std::vector<AovKind>& aovs, int 
     return film;
 }
 
-const std::vector<AovKind> kAllAovs{AovKind::Normal,   AovKind::Depth,    AovKind::Albedo,
-                                    AovKind::Position, AovKind::ObjectId, AovKind::Variance};
+using test::kAllAovs;
 
 TEST(FilmMerge, PartsMergeIntoTheSingleFilmBitForBitExceptTheVariance) {
     const PixelRect crop{1, 1, 7, 5};

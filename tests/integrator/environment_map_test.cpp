@@ -6,16 +6,14 @@
 #include <cmath>
 #include <vector>
 
+#include "integrator_test_helpers.h"
 #include "strahl/core/error.h"
 #include "strahl/core/rng.h"
 
 namespace strahl {
 namespace {
 
-Vec2 next2D(Pcg32& rng) {
-    const float x = rng.nextFloat();
-    return Vec2(x, rng.nextFloat());
-}
+using test::next2D;
 
 void expectNear(const Vec3& a, const Vec3& b, float tolerance) {
     EXPECT_NEAR(a.x, b.x, tolerance);

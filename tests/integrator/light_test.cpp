@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "integrator_test_helpers.h"
 #include "strahl/core/error.h"
 #include "strahl/core/rng.h"
 #include "strahl/core/spherical_triangle.h"
@@ -17,10 +18,7 @@
 namespace strahl {
 namespace {
 
-Vec2 next2D(Pcg32& rng) {
-    const float x = rng.nextFloat();
-    return Vec2(x, rng.nextFloat());
-}
+using test::next2D;
 
 // Monte Carlo irradiance at ctx through sampleLi: the mean of L cos / pdf.
 // Also checks, for every sample of a non-delta light, that pdfLi reproduces

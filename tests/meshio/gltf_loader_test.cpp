@@ -135,8 +135,8 @@ std::string triangleGltf(const std::string& extra = "", const std::string& primi
                   t.viewsAndAccessors(), ",\n", t.buffers(), extra, "}");
 }
 
-LoadedMesh loadText(const std::string& test, const std::string& json,
-                    const std::string& name = "model.gltf") {
+LoadedMesh loadGltfText(const std::string& test, const std::string& json,
+                        const std::string& name = "model.gltf") {
     const fs::path file = test::scratchDir(test) / name;
     writeFile(file, json);
     return loadGltf(file);
@@ -174,7 +174,7 @@ std::string pbrTriangleGltf() {
 }
 
 TEST(GltfLoader, SingleTriangleWithDataUriBufferAndPbrMaterial) {
-    const LoadedMesh m = loadText("gltf-triangle", pbrTriangleGltf());
+    const LoadedMesh m = loadGltfText("gltf-triangle", pbrTriangleGltf());
     const TriangleMesh& mesh = m.mesh;
     ASSERT_EQ(mesh.triangleCount(), 1u);
     ASSERT_EQ(mesh.vertexCount(), 3u);
@@ -204,7 +204,7 @@ TEST(GltfLoader, SingleTriangleWithDataUriBufferAndPbrMaterial) {
 
 // The triangle with one material of alphaMode `mode` (and `extra` material keys).
 MeshMaterial alphaMaterial(const std::string& mode, const std::string& extra = "") {
-    const LoadedMesh m = loadText("gltf-alpha", triangleGltf(R"(,
+    const LoadedMesh m = loadGltfText("gltf-alpha", triangleGltf(R"(,
         "materials": [{"alphaMode": ")" + mode + R"(", "pbrMetallicRoughness":
                        {"baseColorFactor": [1, 1, 1, 0.4]})" + extra + "}]",
                                                              R"(, "material": 0)"));
@@ -231,7 +231,7 @@ TEST(GltfLoader, AlphaModesBecomeAnOpacityOrACutoff) {
 
 TEST(GltfLoader, PrimitiveWithoutMaterialGetsTheGltfDefaultMaterial) {
     WarningCapture warnings;
-    const LoadedMesh m = loadText("gltf-default-material", triangleGltf());
+    const LoadedMesh m = loadGltfText("gltf-default-material", triangleGltf());
     ASSERT_EQ(m.materials.size(), 1u);
     EXPECT_EQ(m.materials[0].name, "default");
     EXPECT_EQ(m.materials[0].source, MeshMaterial::Source::Gltf);
@@ -281,7 +281,7 @@ std::string hierarchyGltf(const char* nodes = kHierarchyNodes) {
 }
 
 TEST(GltfLoader, NodeHierarchyAppliesTrsAndMatricesAndMirrorsFlipTheWinding) {
-    const LoadedMesh m = loadText("gltf-hierarchy", hierarchyGltf());
+    const LoadedMesh m = loadGltfText("gltf-hierarchy", hierarchyGltf());
     const TriangleMesh& mesh = m.mesh;
     ASSERT_EQ(mesh.triangleCount(), 2u);  // node 3 is not in scene 1
     ASSERT_EQ(mesh.vertexCount(), 6u);
@@ -320,7 +320,7 @@ std::string slantedTriangleGltf() {
 
 TEST(GltfLoader, NormalsUseTheInverseTransposeAndStayUnitLength) {
     // The normal must stay perpendicular to the transformed triangle.
-    const LoadedMesh m = loadText("gltf-normals", slantedTriangleGltf());
+    const LoadedMesh m = loadGltfText("gltf-normals", slantedTriangleGltf());
     ASSERT_EQ(m.mesh.triangleCount(), 1u);
     EXPECT_EQ(m.mesh.indices, (std::vector<uint32_t>{0, 1, 2}));  // non-indexed: 0..n-1
     const Vec3 face = windingNormal(m.mesh, 0);
@@ -376,7 +376,7 @@ std::string interleavedGltf() {
 }
 
 TEST(GltfLoader, InterleavedStrideNormalizedTexcoordsSparseAccessorsAndByteIndices) {
-    const LoadedMesh m = loadText("gltf-interleaved", interleavedGltf());
+    const LoadedMesh m = loadGltfText("gltf-interleaved", interleavedGltf());
     const TriangleMesh& mesh = m.mesh;
     ASSERT_EQ(mesh.vertexCount(), 6u);
     EXPECT_EQ(mesh.indices, (std::vector<uint32_t>{0, 1, 2, 3, 4, 5}));  // u8 in primitive 1
@@ -405,7 +405,7 @@ std::string flatNormalsGltf() {
 }
 
 TEST(GltfLoader, PrimitivesWithoutNormalsGetFlatNormalsNextToOthers) {
-    const LoadedMesh m = loadText("gltf-flat", flatNormalsGltf());
+    const LoadedMesh m = loadGltfText("gltf-flat", flatNormalsGltf());
     ASSERT_EQ(m.mesh.triangleCount(), 2u);
     ASSERT_EQ(m.mesh.vertexCount(), 6u);  // the flat primitive: one vertex per corner
     ASSERT_EQ(m.mesh.normals.size(), 6u);
@@ -423,7 +423,7 @@ std::string linesGltf(const std::string& extra = "") {
 
 TEST(GltfLoader, ModesOtherThanTrianglesAreSkippedWithAWarning) {
     WarningCapture warnings;
-    const LoadedMesh m = loadText("gltf-lines", linesGltf());
+    const LoadedMesh m = loadGltfText("gltf-lines", linesGltf());
     EXPECT_EQ(m.mesh.triangleCount(), 1u);
     EXPECT_THAT(warnings.text(),
                 HasSubstr("model.gltf: meshes[0].primitives[1]: mode 1 is not TRIANGLES (4); "
@@ -479,7 +479,7 @@ const char* kExtensionsUsed = R"(, "extensionsUsed": ["KHR_texture_transform",
 
 TEST(GltfLoader, UnsupportedOptionalExtensionsAreNamedInAWarning) {
     WarningCapture warnings;
-    const LoadedMesh m = loadText("gltf-extensions", triangleGltf(kExtensionsUsed));
+    const LoadedMesh m = loadGltfText("gltf-extensions", triangleGltf(kExtensionsUsed));
     EXPECT_EQ(m.mesh.triangleCount(), 1u);
     EXPECT_THAT(warnings.text(), HasSubstr("ignoring the glTF extensions KHR_texture_transform"));
     EXPECT_THAT(warnings.text(), Not(HasSubstr("KHR_materials_ior")));

@@ -20,7 +20,7 @@ namespace {
 
 using test::writeFile;
 
-std::string errorOf(const fs::path& file) {
+std::string meshFileErrorOf(const fs::path& file) {
     return test::errorMessage([&] { loadMeshFile(file); });
 }
 
@@ -57,18 +57,19 @@ TEST(MeshFormats, EachExtensionBelongsToOneFormatAndTheListsSayThemAll) {
 
 TEST(LoadMeshFile, UnknownExtensionNamesTheFile) {
     const fs::path dir = test::scratchDir("meshfile-unknown");
-    EXPECT_THAT(errorOf(dir / "model.stl"),
+    EXPECT_THAT(meshFileErrorOf(dir / "model.stl"),
                 HasSubstr((dir / "model.stl").string() + ": unknown mesh file extension '.stl'"));
-    EXPECT_THAT(errorOf(dir / "model"), HasSubstr("model: unknown mesh file extension ''"));
-    EXPECT_THAT(errorOf(dir / "model.stl"), HasSubstr("(expected .obj, .ply, .ply.gz, .gltf, .glb or .serialized)"));
+    EXPECT_THAT(meshFileErrorOf(dir / "model"), HasSubstr("model: unknown mesh file extension ''"));
+    EXPECT_THAT(meshFileErrorOf(dir / "model.stl"), HasSubstr("(expected .obj, .ply, .ply.gz, .gltf, .glb or .serialized)"));
 }
 
 TEST(LoadMeshFile, MissingOrUnreadableFileGivesTheSystemReason) {
     const fs::path dir = test::scratchDir("meshfile-missing");
-    EXPECT_THAT(errorOf(dir / "gone.ply"), HasSubstr((dir / "gone.ply").string() +
-                                                     ": cannot open: No such file or directory"));
+    EXPECT_THAT(
+        meshFileErrorOf(dir / "gone.ply"),
+        HasSubstr((dir / "gone.ply").string() + ": cannot open: No such file or directory"));
     fs::create_directories(dir / "folder.obj");
-    EXPECT_THAT(errorOf(dir / "folder.obj"),
+    EXPECT_THAT(meshFileErrorOf(dir / "folder.obj"),
                 HasSubstr((dir / "folder.obj").string() + ": cannot open: Is a directory"));
 }
 

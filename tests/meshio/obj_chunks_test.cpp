@@ -114,13 +114,13 @@ TEST(ObjChunks, FacesBeforeAnyUsemtlAcrossChunks) {
     EXPECT_EQ(whole.mesh.mesh.faceMaterials.back(), 1u);
 }
 
-struct BadObj {
+struct BadChunkedObj {
     const char* name;
     std::string text;
     const char* expected;
 };
 
-class ObjChunkErrors : public ::testing::TestWithParam<BadObj> {};
+class ObjChunkErrors : public ::testing::TestWithParam<BadChunkedObj> {};
 
 TEST_P(ObjChunkErrors, NameTheSameLineForEveryChunkSize) {
     const Outcome whole = expectChunkInvariance(GetParam().text);
@@ -133,22 +133,22 @@ INSTANTIATE_TEST_SUITE_P(
     Malformed, ObjChunkErrors,
     ::testing::Values(
         // -4 reaches one vertex before the first, three chunks back at 1 byte.
-        BadObj{"negative_before_start", kTriangle + "f -1 -2 -3\nf -1 -2 -4\n",
-               "5: vertex index -4 is out of range (3 defined so far)"},
+        BadChunkedObj{"negative_before_start", kTriangle + "f -1 -2 -3\nf -1 -2 -4\n",
+                      "5: vertex index -4 is out of range (3 defined so far)"},
         // A forward reference: vertex 4 comes on the next line (the next chunk).
-        BadObj{"forward", kTriangle + "f 1 2 4\nv 1 1 0\n",
-               "4: vertex index 4 is out of range (3 defined so far)"},
+        BadChunkedObj{"forward", kTriangle + "f 1 2 4\nv 1 1 0\n",
+                      "4: vertex index 4 is out of range (3 defined so far)"},
         // Two errors: the first line's wins, whatever chunk the second is in.
-        BadObj{"first_of_two", kTriangle + "f 1 2 3\nv 1 x 0\nf 1 2 9\n",
-               "5: cannot parse coordinate 'x' as a number"},
-        BadObj{"later_chunk_only", kTriangle + "g a\n# c\nf 1 2\n",
-               "6: face with 2 vertices (needs at least 3)"},
-        BadObj{"normal_range", kTriangle + "vn 0 0 1\nf 1//1 2//1 3//2\n",
-               "5: normal index 2 is out of range (1 defined so far)"},
-        BadObj{"usemtl_empty", kTriangle + "f 1 2 3\nusemtl\n",
-               "5: usemtl without a material name"},
-        BadObj{"mtllib_empty", kTriangle + "mtllib \nf 1 2 3 x\n",
-               "4: mtllib without a file name"}),
+        BadChunkedObj{"first_of_two", kTriangle + "f 1 2 3\nv 1 x 0\nf 1 2 9\n",
+                      "5: cannot parse coordinate 'x' as a number"},
+        BadChunkedObj{"later_chunk_only", kTriangle + "g a\n# c\nf 1 2\n",
+                      "6: face with 2 vertices (needs at least 3)"},
+        BadChunkedObj{"normal_range", kTriangle + "vn 0 0 1\nf 1//1 2//1 3//2\n",
+                      "5: normal index 2 is out of range (1 defined so far)"},
+        BadChunkedObj{"usemtl_empty", kTriangle + "f 1 2 3\nusemtl\n",
+                      "5: usemtl without a material name"},
+        BadChunkedObj{"mtllib_empty", kTriangle + "mtllib \nf 1 2 3 x\n",
+                      "4: mtllib without a file name"}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });
 
 TEST(ObjChunks, WarningsBeforeAnErrorOnly) {

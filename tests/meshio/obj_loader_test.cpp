@@ -20,7 +20,7 @@ namespace {
 
 using test::writeFile;
 
-LoadedMesh loadText(const std::string& test, const std::string& text) {
+LoadedMesh loadObjText(const std::string& test, const std::string& text) {
     const fs::path file = test::scratchDir(test) / "mesh.obj";
     writeFile(file, text);
     return loadObj(file);
@@ -43,7 +43,7 @@ class ObjIndexForm : public ::testing::TestWithParam<IndexForm> {};
 
 TEST_P(ObjIndexForm, GivesOneTriangleWithTheRightAttributes) {
     const IndexForm& form = GetParam();
-    const LoadedMesh m = loadText(std::string("obj-form-") + form.name, kAttributes + form.face);
+    const LoadedMesh m = loadObjText(std::string("obj-form-") + form.name, kAttributes + form.face);
     ASSERT_EQ(m.mesh.triangleCount(), 1u);
     ASSERT_EQ(m.mesh.vertexCount(), 3u);
     EXPECT_EQ(m.mesh.uvs.empty(), !form.uvs);
@@ -78,18 +78,18 @@ INSTANTIATE_TEST_SUITE_P(
     [](const auto& testInfo) { return std::string(testInfo.param.name); });
 
 TEST(ObjLoader, NegativeIndicesCountFromTheVerticesDefinedSoFar) {
-    const LoadedMesh m = loadText("obj-relative",
-                                  "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n"
-                                  "v 0 0 5\nv 1 0 5\nv 0 1 5\nf -3 -2 -1\n");
+    const LoadedMesh m = loadObjText("obj-relative",
+                                     "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n"
+                                     "v 0 0 5\nv 1 0 5\nv 0 1 5\nf -3 -2 -1\n");
     ASSERT_EQ(m.mesh.triangleCount(), 2u);
     for (size_t k = 3; k < 6; ++k) EXPECT_EQ(m.mesh.positions[m.mesh.indices[k]].z, 5.0f);
     for (size_t k = 0; k < 3; ++k) EXPECT_EQ(m.mesh.positions[m.mesh.indices[k]].z, 0.0f);
 }
 
 TEST(ObjLoader, PolygonsAreFanTriangulated) {
-    const LoadedMesh m = loadText("obj-fan",
-                                  "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv -1 0.5 0\n"
-                                  "f 1 2 3 4\nf 1 2 3 4 5\n");
+    const LoadedMesh m = loadObjText("obj-fan",
+                                     "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv -1 0.5 0\n"
+                                     "f 1 2 3 4\nf 1 2 3 4 5\n");
     ASSERT_EQ(m.mesh.triangleCount(), 2u + 3u);
     EXPECT_EQ(m.mesh.vertexCount(), 5u);
     // Positions of the fan (0,i,i+1) of each polygon, in order.
@@ -103,11 +103,11 @@ TEST(ObjLoader, PolygonsAreFanTriangulated) {
 }
 
 TEST(ObjLoader, CornersAreUnifiedPerDistinctIndexTriple) {
-    const LoadedMesh m = loadText("obj-unify",
-                                  "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 9 9 9\n"
-                                  "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
-                                  "f 1/1 2/2 3/3\nf 1/1 3/3 4/4\n"  // shares two corners
-                                  "f 1/4 2/2 3/3\n");               // position 1 with a new uv
+    const LoadedMesh m = loadObjText("obj-unify",
+                                     "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 9 9 9\n"
+                                     "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                                     "f 1/1 2/2 3/3\nf 1/1 3/3 4/4\n"  // shares two corners
+                                     "f 1/4 2/2 3/3\n");               // position 1 with a new uv
     ASSERT_EQ(m.mesh.triangleCount(), 3u);
     EXPECT_EQ(m.mesh.vertexCount(), 5u);  // the unused "v 9 9 9" is not output
     EXPECT_EQ(m.mesh.indices[0], m.mesh.indices[3]);
@@ -119,10 +119,11 @@ TEST(ObjLoader, CornersAreUnifiedPerDistinctIndexTriple) {
 
 TEST(ObjLoader, AttributeOnOnlySomeCornersIsDroppedForTheWholeMesh) {
     ::testing::internal::CaptureStderr();
-    const LoadedMesh m = loadText("obj-mixed",
-                                  "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\nvn 0 1 0\nvt 0 0\n"
-                                  "f 1/1/1 2/1/1 3/1/1\n"
-                                  "f 1//2 3//1 4//1\n");
+    const LoadedMesh m =
+        loadObjText("obj-mixed",
+                    "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\nvn 0 1 0\nvt 0 0\n"
+                    "f 1/1/1 2/1/1 3/1/1\n"
+                    "f 1//2 3//1 4//1\n");
     const std::string warnings = ::testing::internal::GetCapturedStderr();
     EXPECT_TRUE(m.mesh.uvs.empty());
     EXPECT_FALSE(m.mesh.normals.empty());
@@ -137,11 +138,11 @@ TEST(ObjLoader, AttributeOnOnlySomeCornersIsDroppedForTheWholeMesh) {
 
 TEST(ObjLoader, IgnoresGroupingAndNonSurfaceStatementsSilently) {
     ::testing::internal::CaptureStderr();
-    const LoadedMesh m = loadText("obj-ignored",
-                                  "# comment\n\n   \no thing\ng a b\ns 1\ns off\n"
-                                  "v 0 0 0 1\nv 1 0 0 0.5 0.5 0.5   # w, then a vertex colour\n"
-                                  "v 0 1 0\nvp 0.5\nvt 0.5\n"
-                                  "l 1 2\np 3\nf 1 2 3 # trailing comment\n");
+    const LoadedMesh m = loadObjText("obj-ignored",
+                                     "# comment\n\n   \no thing\ng a b\ns 1\ns off\n"
+                                     "v 0 0 0 1\nv 1 0 0 0.5 0.5 0.5   # w, then a vertex colour\n"
+                                     "v 0 1 0\nvp 0.5\nvt 0.5\n"
+                                     "l 1 2\np 3\nf 1 2 3 # trailing comment\n");
     EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
     EXPECT_EQ(m.mesh.triangleCount(), 1u);
     EXPECT_EQ(m.mesh.positions[m.mesh.indices[1]], Vec3(1, 0, 0));
@@ -149,7 +150,7 @@ TEST(ObjLoader, IgnoresGroupingAndNonSurfaceStatementsSilently) {
 
 TEST(ObjLoader, UnsupportedStatementWarnsOncePerKeyword) {
     ::testing::internal::CaptureStderr();
-    const LoadedMesh m = loadText(
+    const LoadedMesh m = loadObjText(
         "obj-unsupported", "v 0 0 0\nv 1 0 0\nv 0 1 0\ncstype bspline\ncstype bezier\nf 1 2 3\n");
     const std::string warnings = ::testing::internal::GetCapturedStderr();
     EXPECT_EQ(m.mesh.triangleCount(), 1u);
@@ -300,7 +301,7 @@ INSTANTIATE_TEST_SUITE_P(
     [](const auto& testInfo) { return std::string(testInfo.param.name); });
 
 TEST(ObjLoader, NonFiniteCoordinateOfAnUnusedVertexIsStillAnError) {
-    EXPECT_THROW(loadText("obj-unused-nan", kTri + "v 0 0 inf\nf 1 2 3\n"), Error);
+    EXPECT_THROW(loadObjText("obj-unused-nan", kTri + "v 0 0 inf\nf 1 2 3\n"), Error);
 }
 
 TEST(ObjLoader, MissingFileNamesTheFileAndTheReason) {

@@ -308,7 +308,7 @@ TEST(PlyLoader, VertexIndexNameAndPropertylessElementsWithHugeCounts) {
 // ---------------------------------------------------------------------------
 // Errors
 
-std::string errorOf(const fs::path& file) {
+std::string plyErrorOf(const fs::path& file) {
     return test::errorMessage([&] { loadPly(file); });
 }
 
@@ -322,7 +322,7 @@ class PlyHeaderErrors : public ::testing::TestWithParam<BadHeader> {};
 
 TEST_P(PlyHeaderErrors, NameTheHeaderLine) {
     const fs::path file = writePly(std::string("ply-header-") + GetParam().name, GetParam().text);
-    EXPECT_THAT(errorOf(file), HasSubstr(file.string() + ": " + GetParam().expected));
+    EXPECT_THAT(plyErrorOf(file), HasSubstr(file.string() + ": " + GetParam().expected));
 }
 
 #define PLY_ASCII_START "ply\nformat ascii 1.0\n"
@@ -400,13 +400,13 @@ TEST(PlyLoader, TruncatedBinaryBodyNamesTheByteOffset) {
         // vertices, the count byte and the first index.
         const size_t secondIndex = header + 36 + 1 + 4;
         const fs::path file = writePly("ply-truncated", whole.substr(0, secondIndex + 2));
-        EXPECT_THAT(errorOf(file),
+        EXPECT_THAT(plyErrorOf(file),
                     HasSubstr(file.string() + ": byte offset " + std::to_string(secondIndex) +
                               ": unexpected end of file (truncated?)"));
         // Cut inside the vertices.
         const fs::path early = writePly("ply-truncated-early", whole.substr(0, header + 13));
-        EXPECT_THAT(errorOf(early), HasSubstr(": byte offset " + std::to_string(header + 12) +
-                                              ": unexpected end of file (truncated?)"));
+        EXPECT_THAT(plyErrorOf(early), HasSubstr(": byte offset " + std::to_string(header + 12) +
+                                                 ": unexpected end of file (truncated?)"));
     }
 }
 
@@ -415,17 +415,17 @@ TEST(PlyLoader, AbsurdCountsFailCleanlyAtTheEndOfTheFile) {
     // corners: both must run into the end of the data, not into the allocator.
     const fs::path faces =
         writePly("ply-absurd-faces", binaryTriangle("binary_little_endian", "uchar", 1e15));
-    EXPECT_THAT(errorOf(faces), HasSubstr("unexpected end of file (truncated?)"));
+    EXPECT_THAT(plyErrorOf(faces), HasSubstr("unexpected end of file (truncated?)"));
     const fs::path corners =
         writePly("ply-absurd-list", binaryTriangle("binary_big_endian", "uint", 1, 4e9));
-    EXPECT_THAT(errorOf(corners), HasSubstr("unexpected end of file (truncated?)"));
+    EXPECT_THAT(plyErrorOf(corners), HasSubstr("unexpected end of file (truncated?)"));
     const std::string header =
         "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\n" PLY_XYZ "end_header\n";
     std::string text = header;
     text.append(14, '\1');  // one vertex and a half
     const fs::path vertices = writePly("ply-absurd-vertices", text);
     const std::string offset = std::to_string(header.size() + 12);  // the second vertex
-    EXPECT_THAT(errorOf(vertices),
+    EXPECT_THAT(plyErrorOf(vertices),
                 HasSubstr("bad.ply: byte offset " + offset + ": unexpected end"));
 }
 
@@ -433,12 +433,12 @@ TEST(PlyLoader, BinaryBodyErrorsNameTheByteOffset) {
     const std::string tri = binaryTriangle("binary_little_endian", "uchar", 1, 2);
     const fs::path file = writePly("ply-binary-two", tri);
     const size_t count = tri.find("end_header\n") + 11 + 36;
-    EXPECT_THAT(errorOf(file), HasSubstr("bad.ply: byte offset " + std::to_string(count) +
-                                         ": face 0 has 2 vertices (needs at least 3)"));
+    EXPECT_THAT(plyErrorOf(file), HasSubstr("bad.ply: byte offset " + std::to_string(count) +
+                                            ": face 0 has 2 vertices (needs at least 3)"));
     std::string outOfRange = binaryTriangle("binary_big_endian");
     outOfRange.back() = 3;  // the last index, big-endian: its low byte comes last
     const fs::path bad = writePly("ply-binary-range", outOfRange);
-    EXPECT_THAT(errorOf(bad),
+    EXPECT_THAT(plyErrorOf(bad),
                 HasSubstr("bad.ply: byte offset " + std::to_string(outOfRange.size() - 4) +
                           ": face 0 refers to vertex 3 but there are only 3 vertices"));
 }
@@ -458,7 +458,7 @@ TEST_P(PlyAsciiErrors, NameTheLine) {
                         "end_header\n";
     const fs::path file =
         writePly(std::string("ply-ascii-") + GetParam().name, header + GetParam().body);
-    EXPECT_THAT(errorOf(file), HasSubstr(file.string() + ":" + GetParam().expected));
+    EXPECT_THAT(plyErrorOf(file), HasSubstr(file.string() + ":" + GetParam().expected));
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -486,7 +486,7 @@ TEST(PlyLoader, NegativeLengthOfASkippedList) {
         writePly("ply-negative-list", PLY_ASCII_START "element vertex 1\n" PLY_XYZ
                                                       "property list char int junk\n"
                                                       "end_header\n0 0 0 -1\n");
-    EXPECT_THAT(errorOf(file), HasSubstr("bad.ply:line 9: negative list length -1"));
+    EXPECT_THAT(plyErrorOf(file), HasSubstr("bad.ply:line 9: negative list length -1"));
 }
 
 }  // namespace

@@ -69,14 +69,15 @@ std::string file(uint16_t version, const std::vector<std::string>& meshes) {
     return out;
 }
 
-const std::vector<float> kTriangle = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+const std::vector<float> kTrianglePositions = {0, 0, 0, 1, 0, 0, 0, 1, 0};
 const std::vector<float> kNormals = {0, 0, 1, 0, 0, 1, 0, 0, 1};
 const std::vector<float> kUvs = {0, 0, 1, 0, 0, 0.25f};
 const std::vector<double> kQuad = {0, 0, 2, 1, 0, 2, 1, 1, 2, 0, 1, 2};
 
 TEST(SerializedLoader, ReadsEveryMeshOfAVersion4File) {
-    const std::string bytes = file(4, {mesh<float>(4, kTriangle, kNormals, kUvs, {0, 1, 2}),
-                                       mesh<double>(4, kQuad, {}, {}, {0, 1, 2, 0, 2, 3})});
+    const std::string bytes =
+        file(4, {mesh<float>(4, kTrianglePositions, kNormals, kUvs, {0, 1, 2}),
+                 mesh<double>(4, kQuad, {}, {}, {0, 1, 2, 0, 2, 3})});
     const LoadedMesh first = loadSerializedFromMemory(bytes, "scene.serialized");
     ASSERT_EQ(first.mesh.triangleCount(), 1u);
     EXPECT_EQ(first.mesh.positions[1], Vec3(1, 0, 0));
@@ -91,8 +92,8 @@ TEST(SerializedLoader, ReadsEveryMeshOfAVersion4File) {
 }
 
 TEST(SerializedLoader, ReadsVersion3FilesAndThroughTheFormatList) {
-    const std::string bytes = file(3, {mesh<float>(3, kTriangle, {}, {}, {0, 1, 2}),
-                                       mesh<float>(3, kTriangle, {}, {}, {0, 2, 1})});
+    const std::string bytes = file(3, {mesh<float>(3, kTrianglePositions, {}, {}, {0, 1, 2}),
+                                       mesh<float>(3, kTrianglePositions, {}, {}, {0, 2, 1})});
     EXPECT_EQ(loadSerializedFromMemory(bytes, "old.serialized", 1).mesh.indices,
               (std::vector<uint32_t>{0, 2, 1}));
     const std::filesystem::path path = test::scratchDir("serialized") / "old.serialized";
@@ -101,7 +102,7 @@ TEST(SerializedLoader, ReadsVersion3FilesAndThroughTheFormatList) {
 }
 
 TEST(SerializedLoader, CorruptFilesAreOneClearError) {
-    const std::string good = file(4, {mesh<float>(4, kTriangle, {}, {}, {0, 1, 2})});
+    const std::string good = file(4, {mesh<float>(4, kTrianglePositions, {}, {}, {0, 1, 2})});
     const auto error = [](const std::string& bytes, uint32_t index = 0) {
         return test::errorMessage([&] { loadSerializedFromMemory(bytes, "m.serialized", index); });
     };
@@ -113,7 +114,7 @@ TEST(SerializedLoader, CorruptFilesAreOneClearError) {
     // Cut inside the compressed stream: the indices are missing.
     EXPECT_THAT(error(good.substr(0, good.size() - 30)), HasSubstr("m.serialized: truncated"));
     // An index past the vertices.
-    EXPECT_THAT(error(file(4, {mesh<float>(4, kTriangle, {}, {}, {0, 1, 7})})),
+    EXPECT_THAT(error(file(4, {mesh<float>(4, kTrianglePositions, {}, {}, {0, 1, 7})})),
                 HasSubstr("m.serialized"));
 }
 

@@ -21,7 +21,7 @@ using test::contains;
 using test::RunResult;
 using test::runStrahl;
 
-std::string regressionScene(const std::string& name) {
+std::string regressionScenePath(const std::string& name) {
     return (test::sourceDir() / "scenes/regression" / (name + ".json")).string();
 }
 
@@ -40,7 +40,7 @@ TEST(RasterCli, HelpDocumentsTheAlgorithmOption) {
 TEST(RasterCli, RendersTheOutputsAndAgreesWithTheRayTracer) {
     const fs::path dir = test::scratchDir("raster-cli-render");
     const std::string scene =
-        regressionScene("quad_and_box") + " --integrator eyelight --spp 1 --exr-float";
+        regressionScenePath("quad_and_box") + " --integrator eyelight --spp 1 --exr-float";
     const RunResult r =
         runStrahl("render " + scene + " --algorithm raster --aov depth -o " +
                   (dir / "raster.exr").string() + " -o " + (dir / "raster.png").string());
@@ -73,7 +73,7 @@ TEST(RasterCli, RendersTheOutputsAndAgreesWithTheRayTracer) {
 TEST(RasterCli, OneAndTwoThreadsGiveIdenticalPixels) {
     const fs::path dir = test::scratchDir("raster-cli-threads");
     const std::string scene =
-        regressionScene("cornell_primid") + " -q --algorithm raster --exr-float";
+        regressionScenePath("cornell_primid") + " -q --algorithm raster --exr-float";
     ASSERT_EQ(runStrahl("render " + scene + " --threads 1 -o " + (dir / "one.exr").string()).status,
               0);
     ASSERT_EQ(
@@ -114,21 +114,21 @@ INSTANTIATE_TEST_SUITE_P(
     Cases, RasterCliRefuses,
     ::testing::Values(
         // The scene's own integrator, direct, traces shadow rays.
-        Refusal{"direct", regressionScene("cornell_direct") + " --spp 1",
+        Refusal{"direct", regressionScenePath("cornell_direct") + " --spp 1",
                 "cannot shade integrator 'direct'"},
         // quad_and_box asks for 4 spp; so does the command line here.
-        Refusal{"scenespp", regressionScene("quad_and_box") + " --integrator normal",
+        Refusal{"scenespp", regressionScenePath("quad_and_box") + " --integrator normal",
                 "spp must be 1, got 4"},
-        Refusal{"spp", regressionScene("cornell_primid") + " --spp 2", "spp must be 1, got 2"},
-        Refusal{"implicit", regressionScene("implicit_direct") + " --integrator eyelight",
+        Refusal{"spp", regressionScenePath("cornell_primid") + " --spp 2", "spp must be 1, got 2"},
+        Refusal{"implicit", regressionScenePath("implicit_direct") + " --integrator eyelight",
                 "triangle meshes only"},
-        Refusal{"instances", regressionScene("instances") + " --integrator eyelight",
+        Refusal{"instances", regressionScenePath("instances") + " --integrator eyelight",
                 "top-level meshes only"}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });
 
 TEST(RasterCli, UnknownAlgorithmIsAUsageError) {
     const RunResult r =
-        runStrahl("render " + regressionScene("cornell_primid") + " --algorithm zbuffer");
+        runStrahl("render " + regressionScenePath("cornell_primid") + " --algorithm zbuffer");
     EXPECT_EQ(r.status, 2);
     EXPECT_TRUE(contains(r.err, "--algorithm")) << r.err;
 }

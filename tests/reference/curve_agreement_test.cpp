@@ -63,7 +63,7 @@ std::vector<Ray> raysAtStrands(int n, uint64_t seed) {
     return rays;
 }
 
-struct Agreement {
+struct CurveHitAgreement {
     int hits = 0, disagreements = 0;
 };
 
@@ -72,8 +72,8 @@ struct Agreement {
 // float), and flat ribbons that overlap on screen may swap which piece is
 // nearer: those are counted and bounded instead. Agreeing hits meet to 1e-4
 // (measured: 3e-6).
-Agreement compare(const Accel& embree, const Accel& naive, const std::vector<Ray>& rays, float tTolerance) {
-    Agreement result;
+CurveHitAgreement compare(const Accel& embree, const Accel& naive, const std::vector<Ray>& rays, float tTolerance) {
+    CurveHitAgreement result;
     for (const Ray& ray : rays) {
         const Hit a = embree.intersect(ray), b = naive.intersect(ray);
         if (a.valid() != b.valid()) {
@@ -111,7 +111,7 @@ TEST_P(CurveAgreement, EmbreeAndTheReferenceIntersectorFindTheSameHits) {
     const std::vector<ShapeRef> shapes{ShapeRef{nullptr, &curves, nullptr}};
     const auto embree = buildEmbreeAccel(std::span<const ShapeRef>(shapes), {});
     const auto naive = buildNaiveAccel(std::span<const ShapeRef>(shapes));
-    const Agreement r = compare(*embree, *naive, raysAtStrands(3000, 11), 1e-4f);
+    const CurveHitAgreement r = compare(*embree, *naive, raysAtStrands(3000, 11), 1e-4f);
     EXPECT_GT(r.hits, 300);
     // Silhouette grazes and float round-off: at most 1 % of the hits.
     EXPECT_LE(r.disagreements, r.hits / 100) << r.hits << " hits";
@@ -125,7 +125,7 @@ TEST_P(CurveAgreement, InstancesAgreeToo) {
     scene.instances.push_back(AccelInstance{0, glm::scale(turn, Vec3(0.8f))});
     const auto embree = buildEmbreeAccel(scene, {});
     const auto naive = buildNaiveAccel(scene);
-    const Agreement r = compare(*embree, *naive, raysAtStrands(2500, 12), 1e-4f);
+    const CurveHitAgreement r = compare(*embree, *naive, raysAtStrands(2500, 12), 1e-4f);
     EXPECT_GT(r.hits, 100);
     EXPECT_LE(r.disagreements, r.hits / 100) << r.hits << " hits";
 }

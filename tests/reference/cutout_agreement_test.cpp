@@ -58,14 +58,14 @@ std::vector<Ray> downwardRays(int n, uint64_t seed) {
     return rays;
 }
 
-struct Scene {
+struct StripedScene {
     TriangleMesh top = grid(1.0f, 6), bottom = grid(0.0f, 3);
     StripeCutout stripes;
     std::vector<ShapeRef> shapes{ShapeRef{&top, nullptr, &stripes}, ShapeRef{&bottom, nullptr, nullptr}};
 };
 
 TEST(Cutout, EmbreeAndTheNaiveTracerSkipTheSameHoles) {
-    const Scene scene;
+    const StripedScene scene;
     const auto naive = buildNaiveAccel(std::span<const ShapeRef>(scene.shapes));
     const auto embree = buildEmbreeAccel(std::span<const ShapeRef>(scene.shapes), {});
     int throughHoles = 0, onTop = 0;
@@ -94,7 +94,7 @@ TEST(Cutout, EmbreeAndTheNaiveTracerSkipTheSameHoles) {
 }
 
 TEST(Cutout, InstancedPrototypesKeepTheirHoles) {
-    const Scene scene;
+    const StripedScene scene;
     AccelScene instanced;
     instanced.prototypes.push_back(scene.shapes);
     instanced.instances.push_back(AccelInstance{0, glm::translate(Mat4(1.0f), Vec3(0, 0, -2))});

@@ -44,7 +44,7 @@ TriangleMesh frozenAt(const TriangleMesh& mesh, float t) {
     return still;
 }
 
-std::vector<Ray> timedRays(int count, uint64_t seed) {
+std::vector<Ray> deformingMeshRays(int count, uint64_t seed) {
     Pcg32 rng(seed, 9);
     std::vector<Ray> rays;
     for (int i = 0; i < count; ++i) {
@@ -64,7 +64,7 @@ void expectAgreement(const AccelScene& scene, int minHits) {
     const auto embree = buildEmbreeAccel(scene, {});
     const auto naive = buildNaiveAccel(scene);
     int hits = 0;
-    for (const Ray& ray : timedRays(3000, 3)) {
+    for (const Ray& ray : deformingMeshRays(3000, 3)) {
         const Hit a = embree->intersect(ray), b = naive->intersect(ray);
         ASSERT_EQ(a.valid(), b.valid()) << "time " << ray.time;
         EXPECT_EQ(embree->occluded(ray), a.valid());
@@ -106,7 +106,7 @@ TEST(DeformingMeshAgreement, ADeformingMeshAtTimeTIsTheMeshAtRestThere) {
         const std::vector<ShapeRef> frozen{ShapeRef{&still, nullptr}};
         const auto rest = buildEmbreeAccel(frozen, {});
         int hits = 0;
-        for (Ray ray : timedRays(600, 5)) {
+        for (Ray ray : deformingMeshRays(600, 5)) {
             ray.time = t;
             const Hit a = deforming->intersect(ray);
             Ray at = ray;
@@ -132,7 +132,7 @@ TEST(DeformingMeshAgreement, PacketLanesCarryTheirOwnTimes) {
     const TriangleMesh ball = breathingBall();
     const std::vector<ShapeRef> shapes{ShapeRef{&ball, nullptr}};
     const auto embree = buildEmbreeAccel(shapes, {});
-    const std::vector<Ray> rays = timedRays(16 * 30, 11);
+    const std::vector<Ray> rays = deformingMeshRays(16 * 30, 11);
     for (size_t first = 0; first < rays.size(); first += 8) {
         RayHitPacket8 packet;
         alignas(32) int valid[8];

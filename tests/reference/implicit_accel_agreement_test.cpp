@@ -33,7 +33,7 @@ ImplicitShapeOptions withCells(int cells, std::optional<Bounds3> box = std::null
     return o;
 }
 
-struct Scene {
+struct ImplicitShapesScene {
     ImplicitShape torus{makeImplicitTorus(1.0, 0.3),
                         glm::translate(Mat4(1.0f), Vec3(-1.2f, 0.3f, 0.0f)) *
                             glm::rotate(Mat4(1.0f), 0.9f, Vec3(1.0f, 0.2f, 0.1f)),
@@ -53,14 +53,14 @@ struct Scene {
                           withCells(8, Bounds3{Vec3(-1.0f), Vec3(1.0f)})};
     std::vector<ShapeRef> refs;
 
-    Scene() {
+    ImplicitShapesScene() {
         quad = test::warpedBackdrop();
         refs = {ShapeRef{nullptr, &torus},  ShapeRef{&quad, nullptr},   ShapeRef{nullptr, &sphere},
                 ShapeRef{nullptr, &blobs},  ShapeRef{nullptr, &gyroid}, ShapeRef{nullptr, &formula}};
     }
 };
 
-std::vector<Ray> randomRays(int count, uint64_t seed) {
+std::vector<Ray> implicitShapeRays(int count, uint64_t seed) {
     test::RayFan fan;
     fan.stream = 11;
     fan.zLift = 0.5f;
@@ -70,14 +70,14 @@ std::vector<Ray> randomRays(int count, uint64_t seed) {
 }
 
 TEST(ImplicitAccelAgreement, NaiveAndEmbreeFindTheSameHits) {
-    const Scene scene;
+    const ImplicitShapesScene scene;
     const auto embree = buildEmbreeAccel(std::span<const ShapeRef>(scene.refs), {});
     const auto naive = buildNaiveAccel(scene.refs);
     ASSERT_GT(scene.gyroid.primitiveCount(), 200u);
 
     int hits[6] = {0, 0, 0, 0, 0, 0};
     int misses = 0, sharedFace = 0, uDiffers = 0;
-    for (const Ray& ray : randomRays(3000, 101)) {
+    for (const Ray& ray : implicitShapeRays(3000, 101)) {
         const Hit a = embree->intersect(ray), b = naive->intersect(ray);
         ASSERT_EQ(a.valid(), b.valid());
         EXPECT_EQ(embree->occluded(ray), a.valid());
@@ -118,10 +118,10 @@ TEST(ImplicitAccelAgreement, NaiveAndEmbreeFindTheSameHits) {
 }
 
 TEST(ImplicitAccelAgreement, NaivePacketsMatchEmbreePackets) {
-    const Scene scene;
+    const ImplicitShapesScene scene;
     const auto embree = buildEmbreeAccel(std::span<const ShapeRef>(scene.refs), {});
     const auto naive = buildNaiveAccel(scene.refs);
-    const std::vector<Ray> rays = randomRays(16 * 40, 7);
+    const std::vector<Ray> rays = implicitShapeRays(16 * 40, 7);
     int compared = 0;
     for (size_t base = 0; base + 16 <= rays.size(); base += 16) {
         RayHitPacket16 a, b;

@@ -103,7 +103,7 @@ struct Scenes {
     }
 };
 
-std::vector<Ray> randomRays(int count, uint64_t seed) {
+std::vector<Ray> instanceRays(int count, uint64_t seed) {
     test::RayFan fan;
     fan.stream = 23;
     fan.zLift = 0.5f;
@@ -118,7 +118,7 @@ TEST(InstanceAgreement, EmbreeAndNaiveFindTheSameHitsThroughInstances) {
     const auto embree = buildEmbreeAccel(s.instanced, {});
     const auto naive = buildNaiveAccel(s.instanced);
     int instanceHits = 0, sphereHits = 0, topHits = 0, misses = 0;
-    for (const Ray& ray : randomRays(4000, 3)) {
+    for (const Ray& ray : instanceRays(4000, 3)) {
         const Hit a = embree->intersect(ray), b = naive->intersect(ray);
         ASSERT_EQ(a.valid(), b.valid());
         EXPECT_EQ(embree->occluded(ray), a.valid());
@@ -153,7 +153,7 @@ TEST(InstanceAgreement, InstancedSceneMatchesTheBakedScene) {
                                         : buildEmbreeAccel(s.instanced, {});
         const auto baked = useNaive ? buildNaiveAccel(s.baked) : buildEmbreeAccel(s.baked, {});
         int compared = 0, differ = 0;
-        for (const Ray& ray : randomRays(3000, 5)) {
+        for (const Ray& ray : instanceRays(3000, 5)) {
             const Hit a = instanced->intersect(ray), b = baked->intersect(ray);
             if (a.valid() != b.valid()) {
                 // A ray grazing a silhouette may go either way after the two
@@ -184,7 +184,7 @@ TEST(InstanceAgreement, InstancedSceneMatchesTheBakedScene) {
 TEST(InstanceAgreement, PacketsReportTheInstance) {
     const Scenes s;
     const auto embree = buildEmbreeAccel(s.instanced, {});
-    const std::vector<Ray> rays = randomRays(8 * 60, 9);
+    const std::vector<Ray> rays = instanceRays(8 * 60, 9);
     int instanceLanes = 0;
     for (size_t base = 0; base + 8 <= rays.size(); base += 8) {
         RayHitPacket8 packet;

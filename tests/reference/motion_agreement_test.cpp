@@ -56,7 +56,7 @@ struct MovingScene {
 };
 
 // Rays from a shell around the scene towards it, each at a random time.
-std::vector<Ray> timedRays(int count, uint64_t seed) {
+std::vector<Ray> movingSceneRays(int count, uint64_t seed) {
     Pcg32 rng(seed, 7);
     std::vector<Ray> rays;
     for (int i = 0; i < count; ++i) {
@@ -77,7 +77,7 @@ TEST(MotionAgreement, EmbreeAndNaiveFindTheSameHitsAtEveryTime) {
     const auto embree = buildEmbreeAccel(s.scene, {});
     const auto naive = buildNaiveAccel(s.scene);
     int hits = 0, movingHits = 0, userHits = 0;
-    for (const Ray& ray : timedRays(4000, 3)) {
+    for (const Ray& ray : movingSceneRays(4000, 3)) {
         const Hit a = embree->intersect(ray), b = naive->intersect(ray);
         ASSERT_EQ(a.valid(), b.valid()) << "time " << ray.time;
         EXPECT_EQ(embree->occluded(ray), a.valid());
@@ -103,7 +103,7 @@ TEST(MotionAgreement, AMovingInstanceAtTimeTIsTheInstanceAtRestThere) {
         SCOPED_TRACE(testing::Message() << "time " << t);
         const auto frozen = buildEmbreeAccel(s.frozenAt(t), {});
         int hits = 0;
-        for (Ray ray : timedRays(800, 5)) {
+        for (Ray ray : movingSceneRays(800, 5)) {
             ray.time = t;
             const Hit a = moving->intersect(ray);
             Ray still = ray;
@@ -124,7 +124,7 @@ TEST(MotionAgreement, AMovingInstanceAtTimeTIsTheInstanceAtRestThere) {
 TEST(MotionAgreement, PacketLanesCarryTheirOwnTimes) {
     const MovingScene s;
     const auto embree = buildEmbreeAccel(s.scene, {});
-    const std::vector<Ray> rays = timedRays(16 * 40, 11);
+    const std::vector<Ray> rays = movingSceneRays(16 * 40, 11);
     for (size_t first = 0; first < rays.size(); first += 16) {
         RayHitPacket16 packet;
         alignas(64) int valid[16];

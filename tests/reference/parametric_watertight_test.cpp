@@ -24,8 +24,6 @@
 namespace strahl {
 namespace {
 
-constexpr double kPi = num::kPiD;
-
 // Surface points on the seams and poles of a closed surface, and the points
 // of its tessellation on the corresponding welded edges.
 struct Target {

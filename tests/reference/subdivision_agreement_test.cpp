@@ -51,13 +51,14 @@ std::vector<Ray> raysAt(int n, uint64_t seed, float radius, float target) {
     return rays;
 }
 
-struct Agreement {
+struct SubdivisionHitAgreement {
     int hits = 0, misses = 0, disagreements = 0, paramDisagreements = 0;
     double maxTError = 0.0, maxParamError = 0.0;
 };
 
-Agreement compare(const Accel& embree, const Accel& naive, const std::vector<Ray>& rays) {
-    Agreement r;
+SubdivisionHitAgreement compare(const Accel& embree, const Accel& naive,
+                                const std::vector<Ray>& rays) {
+    SubdivisionHitAgreement r;
     for (const Ray& ray : rays) {
         const Hit a = embree.intersect(ray), b = naive.intersect(ray);
         if (a.valid() != b.valid()) {
@@ -91,7 +92,7 @@ SubdivisionSurface makeSurface(SubdivisionCage cage, int levels, DisplacementFun
     return SubdivisionSurface(std::move(desc));
 }
 
-Agreement agreementFor(SubdivisionCage cage, int levels, DisplacementFunction displacement = nullptr) {
+SubdivisionHitAgreement agreementFor(SubdivisionCage cage, int levels, DisplacementFunction displacement = nullptr) {
     const SubdivisionSurface surface = makeSurface(std::move(cage), levels, std::move(displacement));
     const std::vector<ShapeRef> shapes = {ShapeRef{nullptr, &surface}};
     const auto embree = buildEmbreeAccel(shapes, AccelBuildOptions{});
@@ -104,7 +105,8 @@ Agreement agreementFor(SubdivisionCage cage, int levels, DisplacementFunction di
 // diagonal, so agreeing hits meet to float precision: t within 1e-4 (measured
 // 3e-6). Rays grazing a silhouette may be a hit for one and a miss for the
 // other: at most 0.2 %.
-void expectHitForHit(const Agreement& a, double tTolerance = 1e-4, double paramTolerance = 1e-4) {
+void expectHitForHit(const SubdivisionHitAgreement& a, double tTolerance = 1e-4,
+                     double paramTolerance = 1e-4) {
     EXPECT_GT(a.hits, 500);
     EXPECT_LE(a.disagreements, 6);
     EXPECT_EQ(a.paramDisagreements, 0);
@@ -147,7 +149,8 @@ TEST(SubdivisionAgreement, InfinitelySharpCreasesConvergeToTheReference) {
     SubdivisionCage creased = test::cubeCage();
     creased.creaseEdges = {0, 2, 2, 3, 3, 1, 1, 0};
     creased.creaseWeights = {INFINITY, INFINITY, INFINITY, INFINITY};
-    const Agreement coarse = agreementFor(creased, 4), fine = agreementFor(creased, 6);
+    const SubdivisionHitAgreement coarse = agreementFor(creased, 4),
+                                  fine = agreementFor(creased, 6);
     EXPECT_LE(coarse.disagreements + fine.disagreements, 6);
     EXPECT_LT(coarse.maxTError, 2e-2);
     EXPECT_LT(fine.maxTError, 2e-3);
@@ -182,7 +185,7 @@ TEST(SubdivisionAgreement, InstancesAndPackets) {
     const auto embree = buildEmbreeAccel(scene, AccelBuildOptions{});
     const auto naive = buildNaiveAccel(scene);
     const std::vector<Ray> rays = raysAt(1600, 3, 6.0f, 1.2f);
-    const Agreement a = compare(*embree, *naive, rays);
+    const SubdivisionHitAgreement a = compare(*embree, *naive, rays);
     expectHitForHit(a, 1e-3, 2e-2);
     // 16-wide packets find what single rays find.
     for (size_t first = 0; first + 16 <= rays.size(); first += 16) {

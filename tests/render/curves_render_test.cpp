@@ -15,7 +15,7 @@ namespace {
 
 // A camera looking at a vertical shape from the side, lit by a point light,
 // on a floor, with `shape` (a JSON object) the only other shape.
-SceneDesc sceneWith(const std::string& shape) {
+SceneDesc curveSceneWith(const std::string& shape) {
     return parseSceneText(R"({
       "camera": {"eye": [0, -4, 0.6], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 40},
       "film": {"width": 64, "height": 64},
@@ -31,10 +31,10 @@ SceneDesc sceneWith(const std::string& shape) {
 }
 
 TEST(CurvesRender, AStraightRoundCurveLooksLikeACylinder) {
-    const std::vector<float> curve = test::renderBeauty(sceneWith(R"(
+    const std::vector<float> curve = test::renderBeauty(curveSceneWith(R"(
         {"type": "curves", "basis": "bezier", "radius": 0.4,
          "points": [[0, 0, -1], [0, 0, -0.3], [0, 0, 0.3], [0, 0, 1]]})"));
-    const std::vector<float> cylinder = test::renderBeauty(sceneWith(R"(
+    const std::vector<float> cylinder = test::renderBeauty(curveSceneWith(R"(
         {"type": "parametric", "mode": "direct",
          "surface": {"type": "cylinder", "radius": 0.4, "z_min": -1, "z_max": 1}})"));
     ASSERT_EQ(curve.size(), cylinder.size());
@@ -46,11 +46,11 @@ TEST(CurvesRender, AStraightRoundCurveLooksLikeACylinder) {
 
 TEST(CurvesRender, AStraightOrientedRibbonLooksLikeARectangle) {
     // Across n x C' = (0, -1, 0) x (0, 0, 1) = -x: a 0.8-wide band facing the camera.
-    const std::vector<float> ribbon = test::renderBeauty(sceneWith(R"(
+    const std::vector<float> ribbon = test::renderBeauty(curveSceneWith(R"(
         {"type": "curves", "basis": "bezier", "profile": "oriented", "radius": 0.4,
          "points": [[0, 0, -1], [0, 0, -0.3], [0, 0, 0.3], [0, 0, 1]],
          "normals": [[0, -1, 0], [0, -1, 0], [0, -1, 0], [0, -1, 0]]})"));
-    const std::vector<float> rectangle = test::renderBeauty(sceneWith(R"(
+    const std::vector<float> rectangle = test::renderBeauty(curveSceneWith(R"(
         {"type": "mesh", "positions": [[-0.4, 0, -1], [0.4, 0, -1], [0.4, 0, 1], [-0.4, 0, 1]],
          "indices": [0, 1, 2, 0, 2, 3]})"));
     ASSERT_EQ(ribbon.size(), rectangle.size());
@@ -71,7 +71,7 @@ TEST(CurvesRender, TheNaiveTracerRendersTheSameCurves) {
              "strands": [5, 4]NORMALS})";
         shape.replace(shape.find("PROFILE"), 7, profile);
         shape.replace(shape.find("NORMALS"), 7, normals);
-        const SceneDesc desc = sceneWith(shape);
+        const SceneDesc desc = curveSceneWith(shape);
         const std::vector<float> embree = test::renderBeauty(desc);
         const std::vector<float> naive = test::renderFilm(desc, {.accel = AccelKind::Naive}).resolveBeauty();
         EXPECT_LT(test::differingPixels(embree, naive), 0.005) << profile;

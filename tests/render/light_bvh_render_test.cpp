@@ -51,8 +51,6 @@ SceneDesc lampGrid(const std::string& selection) {
     })", test::scratchDir("light-bvh") / "lamps.json");
 }
 
-double mean(const std::vector<float>& v) { return test::channelSum(v) / double(v.size()); }
-
 TEST(LightBvhRender, ManyLampsAgreeWithPowerSelectionWithFarLessVariance) {
     const auto render = [](const std::string& selection, const std::string& integrator, int spp) {
         return renderFilm(lampGrid(selection), {.aovs = {AovKind::Variance},
@@ -64,14 +62,15 @@ TEST(LightBvhRender, ManyLampsAgreeWithPowerSelectionWithFarLessVariance) {
     // The direct integrator samples every lamp at every hit: no choice, the
     // reference mean (the path tracer at max_depth 1 is direct light too).
     const Film all = render("power", "direct", 8);
-    const double meanAll = mean(all.resolveBeauty()), meanBvh = mean(bvh.resolveBeauty());
+    const double meanAll = test::channelMean(all.resolveBeauty()),
+                 meanBvh = test::channelMean(bvh.resolveBeauty());
     ASSERT_GT(meanAll, 0.01);
     // The BVH render's own standard error is about 0.7 % here.
     EXPECT_NEAR(meanBvh / meanAll, 1.0, 0.03);
-    EXPECT_NEAR(mean(power.resolveBeauty()) / meanAll, 1.0, 0.1);  // noisy: see below
-    const double variancePower = mean(power.resolveAov(AovKind::Variance));
+    EXPECT_NEAR(test::channelMean(power.resolveBeauty()) / meanAll, 1.0, 0.1);  // noisy: see below
+    const double variancePower = test::channelMean(power.resolveAov(AovKind::Variance));
     // At equal samples: the 64-sample variance of the mean, times 2.
-    const double varianceBvh = 2.0 * mean(bvh.resolveAov(AovKind::Variance));
+    const double varianceBvh = 2.0 * test::channelMean(bvh.resolveAov(AovKind::Variance));
     EXPECT_LT(varianceBvh, 0.25 * variancePower)
         << "variance of the mean: bvh " << varianceBvh << ", power " << variancePower;
 }

@@ -89,6 +89,11 @@ inline double channelSum(const std::vector<float>& image) {
     return s;
 }
 
+// The mean of every channel of an image.
+inline double channelMean(const std::vector<float>& image) {
+    return channelSum(image) / double(image.size());
+}
+
 struct Rendered {
     std::vector<float> beauty, depth, normal;
 };

@@ -34,10 +34,6 @@ SceneDesc corner(const std::string& render, float albedo) {
     })", test::scratchDir("roulette") / "corner.json");
 }
 
-double mean(const std::vector<float>& image) {
-    return test::channelSum(image) / double(image.size());
-}
-
 TEST(RussianRoulette, PathsAboveTheThresholdAreLeftAloneBitForBit) {
     // Albedo 0.9 and 3 bounces: the throughput stays >= 0.9^3 = 0.729, above
     // the default threshold 0.5, so the default roulette never plays here.
@@ -56,7 +52,7 @@ TEST(RussianRoulette, BelowTheThresholdItPlaysAndStaysUnbiased) {
     EXPECT_NE(off, on);
     // The whole image's mean agrees to well within its noise (1024 spp x 96
     // pixels; the indirect light roulette touches is a small part of it).
-    EXPECT_NEAR(mean(on), mean(off), 0.01 * mean(off));
+    EXPECT_NEAR(test::channelMean(on), test::channelMean(off), 0.01 * test::channelMean(off));
 }
 
 TEST(RussianRoulette, ThresholdOutsideZeroToOneIsRefusedWithItsPlace) {

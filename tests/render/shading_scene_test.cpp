@@ -21,7 +21,7 @@ void expectColorNear(const Color& actual, const Color& expected, float tolerance
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(actual[c], expected[c], tolerance) << "channel " << c;
 }
 
-struct Rendered {
+struct RenderedWithAlbedo {
     int width = 0;
     std::vector<float> beauty, albedo;
     Color at(int x, int y) const {
@@ -34,10 +34,11 @@ struct Rendered {
     }
 };
 
-Rendered renderIn(const fs::path& dir, const std::string& text) {
+RenderedWithAlbedo renderIn(const fs::path& dir, const std::string& text) {
     const SceneDesc desc = parseSceneText(text, dir / "scene.json");
     const Film film = test::renderFilm(desc, {.aovs = {AovKind::Albedo}});
-    return Rendered{desc.film.width, film.resolveBeauty(), film.resolveAov(AovKind::Albedo)};
+    return RenderedWithAlbedo{desc.film.width, film.resolveBeauty(),
+                              film.resolveAov(AovKind::Albedo)};
 }
 
 // An orthographic camera looking straight down at a floor quad at y = 0
@@ -60,8 +61,9 @@ TEST(SkyLight, LambertPlaneReflectsRhoTimesTheSkyRadianceWithoutNoise) {
     // Irradiance from a uniform sky is pi L; reflected radiance rho/pi * pi L.
     // Cosine-weighted sky sampling makes every sample exactly rho L.
     const fs::path dir = test::scratchDir("sky-plane");
-    const Rendered r = renderIn(dir, floorScene("direct", 4, R"({ "name": "floor", "color": 0.5 })",
-                                                R"(, "background": [2, 1, 0.5])"));
+    const RenderedWithAlbedo r =
+        renderIn(dir, floorScene("direct", 4, R"({ "name": "floor", "color": 0.5 })",
+                                 R"(, "background": [2, 1, 0.5])"));
     for (int y = 0; y < 4; ++y)
         for (int x = 0; x < 4; ++x) expectColorNear(r.at(x, y), Color(1.0f, 0.5f, 0.25f), 1e-5f);
 }
@@ -80,7 +82,7 @@ void writeConstantExr(const fs::path& file, float value) {
 TEST(EnvironmentLight, ConstantMapLightsLikeTheSkyAndScales) {
     const fs::path dir = test::scratchDir("env-plane");
     writeConstantExr(dir / "grey.exr", 0.5f);
-    const Rendered r = renderIn(
+    const RenderedWithAlbedo r = renderIn(
         dir, floorScene("path", 64, R"({ "name": "floor", "color": 0.8 })",
                         R"(, "lights": [ { "type": "environment", "file": "grey.exr",
                                           "scale": 2, "rotation": 30 } ])"));
@@ -153,7 +155,7 @@ TEST(Textures, MeshUvsPlaceTheImageUpright) {
     // picture must appear as drawn. The lookups are filtered over the pixel
     // footprint (and wrap periodically), so the test asks which colour
     // dominates each corner pixel rather than for exact texels.
-    const Rendered r = renderIn(
+    const RenderedWithAlbedo r = renderIn(
         dir, floorScene("direct", 1,
                         R"({ "name": "floor", "color": { "texture": "tex.png" } })", "", 8));
     const Color topLeft = r.albedoAt(1, 1), topRight = r.albedoAt(6, 1);
@@ -171,12 +173,12 @@ TEST(Textures, MeshUvsPlaceTheImageUpright) {
 TEST(AmbientOcclusion, OpenPlaneIsOneAndACoveredSpotIsDarker) {
     const fs::path dir = test::scratchDir("ao-plane");
     const std::string floor = R"({ "name": "floor", "color": 0.5 })";
-    const Rendered open = renderIn(dir, floorScene("ao", 16, floor, ""));
+    const RenderedWithAlbedo open = renderIn(dir, floorScene("ao", 16, floor, ""));
     for (int y = 0; y < 4; ++y)
         for (int x = 0; x < 4; ++x) expectColorNear(open.at(x, y), Color(1.0f), 0.0f);
     // A roof 0.1 above the floor's left half, seen through by the camera
     // (one-sided quad facing up is still an occluder from below).
-    const Rendered covered = renderIn(
+    const RenderedWithAlbedo covered = renderIn(
         dir, R"({
       "camera": { "type": "orthographic", "eye": [0, 5, 0], "back": [0, 1, 0], "up": [0, 0, -1],
                   "window": [-1, 1, -1, 1] },

@@ -15,7 +15,7 @@
 namespace strahl {
 namespace {
 
-SceneDesc sceneWith(const std::string& shape) {
+SceneDesc subdivisionSceneWith(const std::string& shape) {
     std::string text = R"({
       "camera": {"eye": [2.5, -4, 2], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 40},
       "film": {"width": 64, "height": 64},
@@ -40,7 +40,7 @@ constexpr const char* kMixedShape = R"json({"type": "subdivision", "levels": 4,
     "displacement": {"formula": "0.04 * sin(9 * x) * sin(7 * z)"}})json";
 
 TEST(SubdivisionRender, TheNaiveTracerRendersTheSameSurface) {
-    const SceneDesc desc = sceneWith(kMixedShape);
+    const SceneDesc desc = subdivisionSceneWith(kMixedShape);
     const std::vector<float> embree = test::renderBeauty(desc);
     const std::vector<float> naive = test::renderBeauty(desc, {.accel = AccelKind::Naive});
     EXPECT_GT(test::channelSum(embree), 0.0);
@@ -50,11 +50,11 @@ TEST(SubdivisionRender, TheNaiveTracerRendersTheSameSurface) {
 }
 
 TEST(SubdivisionRender, APinnedCageIsItsPolygons) {
-    const std::vector<float> pinned = test::renderBeauty(sceneWith(R"({"type": "subdivision", "levels": 2,
+    const std::vector<float> pinned = test::renderBeauty(subdivisionSceneWith(R"({"type": "subdivision", "levels": 2,
         "boundary": "pin_all",
         "positions": [[-1,-1,-1],[1,-1,-1],[-1,1,-1],[1,1,-1],[-1,-1,1],[1,-1,1],[-1,1,1],[1,1,1]],
         "faces": [[0,2,3,1],[4,5,7,6],[0,1,5,4],[2,6,7,3],[0,4,6,2],[1,3,7,5]]})"));
-    const std::vector<float> box = test::renderBeauty(sceneWith(R"({"type": "mesh",
+    const std::vector<float> box = test::renderBeauty(subdivisionSceneWith(R"({"type": "mesh",
         "positions": [[-1,-1,-1],[1,-1,-1],[-1,1,-1],[1,1,-1],[-1,-1,1],[1,-1,1],[-1,1,1],[1,1,1]],
         "indices": [0,2,3, 0,3,1, 4,5,7, 4,7,6, 0,1,5, 0,5,4, 2,6,7, 2,7,3, 0,4,6, 0,6,2, 1,3,7, 1,7,5]})"));
     // Flat faces shade alike; the shading normals differ only within a
@@ -64,7 +64,7 @@ TEST(SubdivisionRender, APinnedCageIsItsPolygons) {
 }
 
 TEST(SubdivisionRender, ImagesDoNotDependOnTheThreadCount) {
-    SceneDesc desc = sceneWith(kMixedShape);
+    SceneDesc desc = subdivisionSceneWith(kMixedShape);
     desc.render.integrator = "path";
     desc.render.spp = 4;
     const std::vector<float> one = test::renderBeauty(desc, {.threads = 1, .tile = 16});

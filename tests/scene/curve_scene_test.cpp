@@ -7,6 +7,7 @@
 
 #include <string>
 
+#include "scene_test_helpers.h"
 #include "strahl/integrator/world.h"
 #include "strahl/scene/scene_builder.h"
 #include "strahl/scene/scene_desc.h"
@@ -17,16 +18,11 @@ namespace {
 
 using testing::HasSubstr;
 
-SceneDesc parse(const std::string& shape, const std::filesystem::path& file = "scene.json") {
-    return parseSceneText(R"({"shapes": [)" + shape + "]}", file);
-}
-
-std::string errorOf(const std::string& shape) {
-    return test::errorMessage([&] { parse(shape); });
-}
+using test::parseShapes;
+using test::shapesError;
 
 TEST(CurveScene, InlineStrandsWithEveryKey) {
-    const SceneDesc d = parse(R"({"type": "curves", "name": "fur", "basis": "catmull_rom", "profile": "flat",
+    const SceneDesc d = parseShapes(R"({"type": "curves", "name": "fur", "basis": "catmull_rom", "profile": "flat",
         "flat_segments": 8, "radius": 0.05, "strands": [4, 5],
         "points": [[0,0,0], [0,0,1], [0,1,2], [0,1,3,0.1], [1,0,0], [1,0,1], [1,1,2], [1,1,3], [1,2,4]],
         "transform": [{"scale": 2}]})");
@@ -51,7 +47,7 @@ TEST(CurveScene, InlineStrandsWithEveryKey) {
 TEST(CurveScene, StrandFilesAreReadWhenTheWorldIsBuilt) {
     const auto dir = test::scratchDir("curve-scene");
     test::writeFile(dir / "fur.txt", "0 0 0 0.1\n0 0 1 0.1\n\n1 0 0 0.1\n1 0 1 0.1\n1 0 2 0.1\n");
-    const SceneDesc d = parse(R"({"type": "curves", "basis": "linear", "file": "fur.txt"})", dir / "scene.json");
+    const SceneDesc d = parseShapes(R"({"type": "curves", "basis": "linear", "file": "fur.txt"})", dir / "scene.json");
     EXPECT_EQ(buildWorld(d, BuildOptions{}).shapes.at(0).user->primitiveCount(), 3u);
     test::writeFile(dir / "fur.txt", "0 0 0 0.1\n0 0 nan 0.1\n");
     EXPECT_THAT(test::errorMessage([&] { buildWorld(d, BuildOptions{}); }),
@@ -63,23 +59,24 @@ TEST(CurveScene, StrandFilesAreReadWhenTheWorldIsBuilt) {
 }
 
 TEST(CurveScene, BadInputNamesItsPlace) {
-    EXPECT_THAT(errorOf(R"({"type": "curves"})"), HasSubstr("/shapes/0: needs 'points'"));
-    EXPECT_THAT(errorOf(R"({"type": "curves", "points": [[0,0,0], [1,1,1], [2,2,2], [3,3,3]]})"),
-                HasSubstr("/shapes/0/points/0: gives no radius"));
-    EXPECT_THAT(errorOf(R"({"type": "curves", "points": [[0,0,0,-1], [1,1,1,1], [2,2,2,1], [3,3,3,1]]})"),
+    EXPECT_THAT(shapesError(R"({"type": "curves"})"), HasSubstr("/shapes/0: needs 'points'"));
+    EXPECT_THAT(
+        shapesError(R"({"type": "curves", "points": [[0,0,0], [1,1,1], [2,2,2], [3,3,3]]})"),
+        HasSubstr("/shapes/0/points/0: gives no radius"));
+    EXPECT_THAT(shapesError(R"({"type": "curves", "points": [[0,0,0,-1], [1,1,1,1], [2,2,2,1], [3,3,3,1]]})"),
                 HasSubstr("/shapes/0/points/0: radius -1 must be >= 0"));
-    EXPECT_THAT(errorOf(R"({"type": "curves", "radius": 1, "strands": [2, 2], "points": [[0,0,0], [1,1,1], [2,2,2], [3,3,3]]})"),
+    EXPECT_THAT(shapesError(R"({"type": "curves", "radius": 1, "strands": [2, 2], "points": [[0,0,0], [1,1,1], [2,2,2], [3,3,3]]})"),
                 HasSubstr("/shapes/0/strands: curves '/shapes/0': strand 0 has 2 control points, but a bspline segment needs 4"));
-    EXPECT_THAT(errorOf(R"({"type": "curves", "radius": 1, "strands": [3], "points": [[0,0,0], [1,1,1], [2,2,2], [3,3,3]]})"),
+    EXPECT_THAT(shapesError(R"({"type": "curves", "radius": 1, "strands": [3], "points": [[0,0,0], [1,1,1], [2,2,2], [3,3,3]]})"),
                 HasSubstr("/shapes/0/strands: the strands hold 3 points, but 'points' has 4"));
-    EXPECT_THAT(errorOf(R"({"type": "curves", "flat_segments": 3, "radius": 1, "points": [[0,0,0], [1,1,1], [2,2,2], [3,3,3]]})"),
+    EXPECT_THAT(shapesError(R"({"type": "curves", "flat_segments": 3, "radius": 1, "points": [[0,0,0], [1,1,1], [2,2,2], [3,3,3]]})"),
                 HasSubstr("/shapes/0/flat_segments: only for \"profile\": \"flat\""));
-    EXPECT_THAT(errorOf(R"({"type": "curves", "basis": "hermite", "radius": 1, "points": [[0,0,0], [1,1,1]]})"),
+    EXPECT_THAT(shapesError(R"({"type": "curves", "basis": "hermite", "radius": 1, "points": [[0,0,0], [1,1,1]]})"),
                 HasSubstr("/shapes/0/basis"));
-    EXPECT_THAT(errorOf(R"({"type": "curves", "file": "a.txt", "points": [[0,0,0,1]]})"),
+    EXPECT_THAT(shapesError(R"({"type": "curves", "file": "a.txt", "points": [[0,0,0,1]]})"),
                 HasSubstr("'file' and 'points' are exclusive"));
-    EXPECT_THAT(errorOf(R"({"type": "curves", "file": "no-such-file.txt"})"), HasSubstr("no-such-file.txt"));
-    EXPECT_THAT(errorOf(R"({"type": "curves", "radius": 1, "points": [[0,0,0], [1,1,1], [2,2,2], [3,3,3]], "normals": []})"),
+    EXPECT_THAT(shapesError(R"({"type": "curves", "file": "no-such-file.txt"})"), HasSubstr("no-such-file.txt"));
+    EXPECT_THAT(shapesError(R"({"type": "curves", "radius": 1, "points": [[0,0,0], [1,1,1], [2,2,2], [3,3,3]], "normals": []})"),
                 HasSubstr("normals"));
 }
 

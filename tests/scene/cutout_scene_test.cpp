@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 
 // A unit quad in z = 0 with uvs (u along x, v along y) made of `material`, and
 // a solid floor at z = -1.
-std::string scene(const std::string& material) {
+std::string quadScene(const std::string& material) {
     return R"({"materials": [)" + material + R"(],
       "shapes": [{"type": "mesh", "material": "leaf", "positions": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]],
                   "uvs": [[0,0],[1,0],[1,1],[0,1]], "indices": [0,1,2, 0,2,3]},
@@ -55,14 +55,14 @@ double throughFraction(const World& w, float x0, float x1, int n = 64) {
 }
 
 TEST(CutoutScene, ConstantOpacityZeroIsInvisibleAndOneIsSolid) {
-    const World hole = world(scene(R"({"name": "leaf", "opacity": 0})"));
+    const World hole = world(quadScene(R"({"name": "leaf", "opacity": 0})"));
     EXPECT_EQ(throughFraction(hole, 0, 1), 1.0);
-    const World solid = world(scene(R"({"name": "leaf", "opacity": 1})"));
+    const World solid = world(quadScene(R"({"name": "leaf", "opacity": 1})"));
     EXPECT_EQ(throughFraction(solid, 0, 1), 0.0);
 }
 
 TEST(CutoutScene, PartialOpacityLetsThatFractionThroughTheSameForEveryTracer) {
-    const std::string text = scene(R"({"name": "leaf", "opacity": 0.3})");
+    const std::string text = quadScene(R"({"name": "leaf", "opacity": 0.3})");
     const World embree = world(text), naive = world(text, "scene.json", AccelKind::Naive);
     const double through = throughFraction(embree, 0, 1, 128);
     EXPECT_NEAR(through, 0.7, 0.02);
@@ -92,7 +92,7 @@ TEST(CutoutScene, AnOpacityTextureCutsWhereItIsZero) {
     ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels.data()));
     ASSERT_TRUE(out->close());
     const std::string text =
-        scene(R"({"name": "leaf", "opacity": {"texture": "mask.png", "filter": "nearest"}})");
+        quadScene(R"({"name": "leaf", "opacity": {"texture": "mask.png", "filter": "nearest"}})");
     test::writeFile(dir / "scene.json", text);
     const World w = world(text, dir / "scene.json");
     EXPECT_EQ(throughFraction(w, 0.0f, 0.5f), 1.0);
@@ -117,20 +117,21 @@ TEST(CutoutScene, GltfAlphaBecomesTheBaseColoursAlphaAsOpacity) {
     opaque.source = MeshMaterial::Source::Gltf;
     EXPECT_FALSE(scene_detail::buildMeshMaterial(opaque, "wall", w).cutsOut());
     // A cutoff makes the opacity a threshold: 0.4 < 0.5 is a hole everywhere.
-    const std::string text = scene(R"({"name": "leaf", "opacity": 0.4, "opacity_cutoff": 0.5})");
+    const std::string text =
+        quadScene(R"({"name": "leaf", "opacity": 0.4, "opacity_cutoff": 0.5})");
     EXPECT_EQ(throughFraction(world(text), 0, 1), 1.0);
-    EXPECT_EQ(throughFraction(world(scene(R"({"name": "leaf", "opacity": 0.6, "opacity_cutoff": 0.5})")), 0, 1), 0.0);
+    EXPECT_EQ(throughFraction(world(quadScene(R"({"name": "leaf", "opacity": 0.6, "opacity_cutoff": 0.5})")), 0, 1), 0.0);
 }
 
 TEST(CutoutScene, WhatCannotBeCutOutIsOneClearError) {
     EXPECT_EQ(test::errorMessage([] {
-                  parseSceneText(scene(R"({"name": "leaf", "opacity": 0.5, "emission": 1})"),
+                  parseSceneText(quadScene(R"({"name": "leaf", "opacity": 0.5, "emission": 1})"),
                                  "scene.json");
               }),
               "scene.json: /materials/0/opacity: an emitting material cannot have an opacity "
               "(cut-out emitters are not supported)");
     EXPECT_EQ(test::errorMessage([] {
-                  parseSceneText(scene(R"({"name": "leaf", "opacity": 1.5})"), "scene.json");
+                  parseSceneText(quadScene(R"({"name": "leaf", "opacity": 1.5})"), "scene.json");
               }),
               "scene.json: /materials/0/opacity: must be in [0, 1], got 1.5");
     const std::string implicit = R"({"materials": [{"name": "leaf", "opacity": 0.5}],

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include "scene_test_helpers.h"
 #include "strahl/core/error.h"
 #include "strahl/meshio/gltf_camera.h"
 #include "strahl/scene/scene_builder.h"
@@ -18,6 +19,8 @@ namespace strahl {
 namespace {
 
 namespace fs = std::filesystem;
+using test::expectNear;
+using test::naive;
 using testing::HasSubstr;
 
 // Node 0 "rig": translated to (1, 2, 3), turned 90 degrees about +y, with the
@@ -40,18 +43,6 @@ const std::string kCameras = R"({
 
 const std::string kShapes = R"("shapes": [{"type": "mesh",
     "positions": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "indices": [0, 1, 2]}])";
-
-BuildOptions naive() {
-    BuildOptions options;
-    options.accel = AccelKind::Naive;
-    return options;
-}
-
-void expectNear(Vec3 a, Vec3 b) {
-    EXPECT_NEAR(a.x, b.x, 1e-5f);
-    EXPECT_NEAR(a.y, b.y, 1e-5f);
-    EXPECT_NEAR(a.z, b.z, 1e-5f);
-}
 
 TEST(GltfCamera, PlacedCamerasComeWithTheirWorldFrames) {
     const fs::path dir = test::scratchDir("gltf-camera");

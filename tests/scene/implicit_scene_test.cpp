@@ -9,6 +9,7 @@
 #include <cmath>
 #include <string>
 
+#include "scene_test_helpers.h"
 #include "strahl/core/error.h"
 #include "strahl/scene/scene_builder.h"
 #include "strahl/scene/scene_desc.h"
@@ -18,9 +19,9 @@ namespace strahl {
 namespace {
 
 using test::contains;
-
-// A scene whose only shape is `shape` (a JSON object).
-std::string sceneWith(const std::string& shape) { return R"({"shapes": [)" + shape + "]}"; }
+using test::kTriangleShape;
+using test::parseJson;
+using test::sceneWith;
 
 // An implicit shape with `surface` (a JSON object) and extra shape members.
 std::string implicitShape(const std::string& surface, const std::string& extra = "") {
@@ -30,24 +31,22 @@ std::string implicitShape(const std::string& surface, const std::string& extra =
 
 const std::string kBox = R"("box": [[-2, -2, -2], [2, 2, 2]])";
 
-SceneDesc parse(const std::string& text) { return parseSceneText(text, "scene.json"); }
-
 // The one implicit shape of a scene made of `surface` and `extra`.
 ShapeDesc parseShape(const std::string& surface, const std::string& extra = "") {
-    const SceneDesc desc = parse(sceneWith(implicitShape(surface, extra)));
+    const SceneDesc desc = parseJson(sceneWith(implicitShape(surface, extra)));
     EXPECT_EQ(desc.shapes.size(), 1u);
     return desc.shapes.at(0);
 }
 
-std::string errorOf(const std::string& surface, const std::string& extra = "") {
-    return test::errorMessage([&] { parse(sceneWith(implicitShape(surface, extra))); });
+std::string implicitError(const std::string& surface, const std::string& extra = "") {
+    return test::errorMessage([&] { parseJson(sceneWith(implicitShape(surface, extra))); });
 }
 
 double f(const ShapeDesc& shape, double x, double y, double z) {
     return shape.implicitSurface->value(DVec3(x, y, z));
 }
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPiD = 3.14159265358979323846;
 
 // Bounds are rounded outwards: they must contain [lo, hi] on `axis` and exceed
 // it by no more than a few float ulps of the extent.
@@ -207,7 +206,7 @@ TEST(ImplicitScene, TriplyPeriodicSurfacesWithPeriodLevelAndThickness) {
          }},
     };
     // Scene numbers are floats: these three are exact in float.
-    const double period = 2.0, level = 0.25, thickness = 0.125, k = 2.0 * kPi / period;
+    const double period = 2.0, level = 0.25, thickness = 0.125, k = 2.0 * kPiD / period;
     const double points[][3] = {{0.1, 0.2, 0.3}, {-0.7, 0.45, 1.3}, {0.9, -0.8, -0.05}};
     for (const PeriodicCase& c : cases) {
         SCOPED_TRACE(c.type);
@@ -224,7 +223,7 @@ TEST(ImplicitScene, TriplyPeriodicSurfacesWithPeriodLevelAndThickness) {
             EXPECT_NEAR(f(levelSet, p[0], p[1], p[2]), g, 1e-12);
             EXPECT_NEAR(f(sheet, p[0], p[1], p[2]), std::abs(g) - thickness, 1e-12);
             EXPECT_NEAR(f(defaults, p[0], p[1], p[2]),
-                        c.g(2 * kPi * p[0], 2 * kPi * p[1], 2 * kPi * p[2]), 1e-12);
+                        c.g(2 * kPiD * p[0], 2 * kPiD * p[1], 2 * kPiD * p[2]), 1e-12);
         }
     }
 }
@@ -323,7 +322,7 @@ TEST(ImplicitScene, SmoothUnionBlends) {
 // --- shape keys --------------------------------------------------------------
 
 TEST(ImplicitScene, ShapeKeysBoxCellsToleranceNameMaterialTransform) {
-    const SceneDesc desc = parse(R"({
+    const SceneDesc desc = parseJson(R"({
       "materials": [{"name": "gold", "color": [0.9, 0.6, 0.2]}],
       "shapes": [
         {"type": "implicit", "name": "ring", "material": "gold",
@@ -357,7 +356,7 @@ TEST(ImplicitScene, ShapeKeysBoxCellsToleranceNameMaterialTransform) {
 // as floats, and 1e-12f < 1e-12, 0.1f > 0.1, so the range check must allow
 // for the rounding.
 TEST(ImplicitScene, ToleranceEndPointsAreAccepted) {
-    const SceneDesc desc = parse(R"({"shapes": [
+    const SceneDesc desc = parseJson(R"({"shapes": [
         {"type": "implicit", "surface": {"type": "sphere"}, "tolerance": 1e-12},
         {"type": "implicit", "surface": {"type": "sphere"}, "tolerance": 0.1}]})");
     ASSERT_EQ(desc.shapes.size(), 2u);
@@ -366,7 +365,7 @@ TEST(ImplicitScene, ToleranceEndPointsAreAccepted) {
 }
 
 TEST(ImplicitScene, BuildWorldPlacesTheShapeWithItsCellsAndBox) {
-    const SceneDesc desc = parse(R"({"shapes": [
+    const SceneDesc desc = parseJson(R"({"shapes": [
         {"type": "implicit", "surface": {"type": "torus"}, "cells": 8,
          "box": [[0, -2, -2], [2, 2, 2]], "transform": [{"translate": [10, 0, 0]}]},
         {"type": "implicit", "surface": {"type": "sphere"}},
@@ -391,69 +390,71 @@ TEST(ImplicitScene, BuildWorldPlacesTheShapeWithItsCellsAndBox) {
 // --- bad input: the message names the place ------------------------------------
 
 TEST(ImplicitSceneErrors, FormulaSyntaxErrorNamesThePointerAndColumn) {
-    EXPECT_EQ(errorOf(R"({"type": "formula", "f": "x^2 + * y"})", kBox),
+    EXPECT_EQ(implicitError(R"({"type": "formula", "f": "x^2 + * y"})", kBox),
               "scene.json: /shapes/0/surface/f: column 7: expected an operand (a number, a name "
               "or '('), found '*'");
-    EXPECT_EQ(errorOf(R"({"type": "formula", "f": "x^2 + (y"})", kBox),
+    EXPECT_EQ(implicitError(R"({"type": "formula", "f": "x^2 + (y"})", kBox),
               "scene.json: /shapes/0/surface/f: column 9: expected ')' to close the '(' at column "
               "7, found the end of the formula");
-    EXPECT_EQ(errorOf(R"({"type": "formula", "f": ""})", kBox),
+    EXPECT_EQ(implicitError(R"({"type": "formula", "f": ""})", kBox),
               "scene.json: /shapes/0/surface/f: column 1: empty formula");
     // Inside a CSG operand, the pointer goes down to it.
-    const std::string nested = errorOf(
+    const std::string nested = implicitError(
         R"({"type": "union", "operands": [{"type": "sphere"}, {"type": "formula", "f": "x +"}]})",
         kBox);
     EXPECT_TRUE(contains(nested, "scene.json: /shapes/0/surface/operands/1/f: column ")) << nested;
 }
 
 TEST(ImplicitSceneErrors, UnknownVariableInAFormula) {
-    const std::string e = errorOf(R"({"type": "formula", "f": "x^2 + w"})", kBox);
+    const std::string e = implicitError(R"({"type": "formula", "f": "x^2 + w"})", kBox);
     EXPECT_EQ(e.rfind("scene.json: /shapes/0/surface/f: column 7: unknown name 'w'", 0), 0u) << e;
     // A parameter is known, and misspelling it names it.
     const std::string p =
-        errorOf(R"({"type": "formula", "f": "x - rr", "parameters": {"r": 1}})", kBox);
+        implicitError(R"({"type": "formula", "f": "x - rr", "parameters": {"r": 1}})", kBox);
     EXPECT_TRUE(contains(p, "/shapes/0/surface/f: column 5: unknown name 'rr'")) << p;
 }
 
 TEST(ImplicitSceneErrors, FormulaParameters) {
-    EXPECT_EQ(errorOf(R"({"type": "formula", "f": "x + r", "parameters": {"r": "a"}})", kBox),
+    EXPECT_EQ(implicitError(R"({"type": "formula", "f": "x + r", "parameters": {"r": "a"}})", kBox),
               "scene.json: /shapes/0/surface/parameters/r: expected a number, got string");
-    EXPECT_EQ(errorOf(R"({"type": "formula", "f": "x + r", "parameters": [1]})", kBox),
+    EXPECT_EQ(implicitError(R"({"type": "formula", "f": "x + r", "parameters": [1]})", kBox),
               "scene.json: /shapes/0/surface/parameters: expected an object of name: number, got "
               "array");
-    EXPECT_EQ(errorOf(R"({"type": "formula", "f": "x + r", "parameters": {"r": 1e39}})", kBox),
-              "scene.json: /shapes/0/surface/parameters/r: must be a finite number within float "
-              "range, got 1e+39");
+    EXPECT_EQ(
+        implicitError(R"({"type": "formula", "f": "x + r", "parameters": {"r": 1e39}})", kBox),
+        "scene.json: /shapes/0/surface/parameters/r: must be a finite number within float "
+        "range, got 1e+39");
     const std::string shadow =
-        errorOf(R"({"type": "formula", "f": "x + y", "parameters": {"x": 1}})", kBox);
+        implicitError(R"({"type": "formula", "f": "x + y", "parameters": {"x": 1}})", kBox);
     EXPECT_TRUE(contains(shadow, "/shapes/0/surface")) << shadow;
     EXPECT_TRUE(contains(shadow, "parameter 'x' shadows the variable 'x'")) << shadow;
-    EXPECT_EQ(errorOf(R"({"type": "formula"})", kBox),
+    EXPECT_EQ(implicitError(R"({"type": "formula"})", kBox),
               "scene.json: /shapes/0/surface: missing key 'f'");
 }
 
 TEST(ImplicitSceneErrors, UnboundedSurfacesNeedABox) {
-    EXPECT_EQ(errorOf(R"({"type": "formula", "f": "x + y"})"),
+    EXPECT_EQ(implicitError(R"({"type": "formula", "f": "x + y"})"),
               "scene.json: /shapes/0: the surface formula \"x + y\" has no finite bounds of its "
               "own: give the shape a \"box\"");
-    EXPECT_EQ(errorOf(R"({"type": "quadric", "coefficients": {"xx": 1, "yy": 1, "c": -1}})"),
+    EXPECT_EQ(implicitError(R"({"type": "quadric", "coefficients": {"xx": 1, "yy": 1, "c": -1}})"),
               "scene.json: /shapes/0: the surface quadric has no finite bounds of its own: give "
               "the shape a \"box\"");
-    EXPECT_EQ(errorOf(R"({"type": "gyroid"})"),
+    EXPECT_EQ(implicitError(R"({"type": "gyroid"})"),
               "scene.json: /shapes/0: the surface gyroid period=1 level=0 has no finite bounds of "
               "its own: give the shape a \"box\"");
     for (const char* type : {"schwarz_p", "schwarz_d", "neovius"}) {
-        const std::string e = errorOf(std::string(R"({"type": ")") + type + R"("})");
+        const std::string e = implicitError(std::string(R"({"type": ")") + type + R"("})");
         EXPECT_TRUE(contains(e, "scene.json: /shapes/0: the surface ")) << e;
         EXPECT_TRUE(contains(e, "give the shape a \"box\"")) << e;
     }
     // A union or difference led by an unbounded operand is unbounded; an
     // intersection with a bounded operand is not.
     EXPECT_TRUE(contains(
-        errorOf(R"({"type": "union", "operands": [{"type": "sphere"}, {"type": "gyroid"}]})"),
+        implicitError(R"({"type": "union", "operands": [{"type": "sphere"}, {"type": "gyroid"}]})"),
         "give the shape a \"box\""));
     EXPECT_TRUE(contains(
-        errorOf(R"({"type": "difference", "operands": [{"type": "gyroid"}, {"type": "sphere"}]})"),
+        implicitError(
+            R"({"type": "difference", "operands": [{"type": "gyroid"}, {"type": "sphere"}]})"),
         "give the shape a \"box\""));
     const ShapeDesc ok =
         parseShape(R"({"type": "intersection", "operands": [{"type": "gyroid"}, {"type": "sphere"}]})");
@@ -464,120 +465,123 @@ TEST(ImplicitSceneErrors, UnboundedSurfacesNeedABox) {
 }
 
 TEST(ImplicitSceneErrors, ParametersOutOfRange) {
-    EXPECT_EQ(errorOf(R"({"type": "sphere", "radius": -1})"),
+    EXPECT_EQ(implicitError(R"({"type": "sphere", "radius": -1})"),
               "scene.json: /shapes/0/surface: parameter 'radius' must be > 0 (got -1)");
-    EXPECT_EQ(errorOf(R"({"type": "torus", "minor_radius": 0})"),
+    EXPECT_EQ(implicitError(R"({"type": "torus", "minor_radius": 0})"),
               "scene.json: /shapes/0/surface: parameter 'minor_radius' must be > 0 (got 0)");
-    EXPECT_EQ(errorOf(R"({"type": "torus", "major_radius": -2})"),
+    EXPECT_EQ(implicitError(R"({"type": "torus", "major_radius": -2})"),
               "scene.json: /shapes/0/surface: parameter 'major_radius' must be > 0 (got -2)");
-    EXPECT_EQ(errorOf(R"({"type": "superellipsoid", "radii": [1, 0, 1]})"),
+    EXPECT_EQ(implicitError(R"({"type": "superellipsoid", "radii": [1, 0, 1]})"),
               "scene.json: /shapes/0/surface: parameter 'radii.y' must be > 0 (got 0)");
-    EXPECT_EQ(errorOf(R"({"type": "superellipsoid", "e1": 20})"),
+    EXPECT_EQ(implicitError(R"({"type": "superellipsoid", "e1": 20})"),
               "scene.json: /shapes/0/surface: superellipsoid exponents e1, e2 must lie in [0.01, "
               "10]");
-    EXPECT_EQ(errorOf(R"({"type": "superellipsoid", "e2": 0.001})"),
+    EXPECT_EQ(implicitError(R"({"type": "superellipsoid", "e2": 0.001})"),
               "scene.json: /shapes/0/surface: superellipsoid exponents e1, e2 must lie in [0.01, "
               "10]");
-    EXPECT_EQ(errorOf(R"({"type": "blobs", "blobs": [{"radius": 0}]})"),
+    EXPECT_EQ(implicitError(R"({"type": "blobs", "blobs": [{"radius": 0}]})"),
               "scene.json: /shapes/0/surface: parameter 'radius' must be > 0 (got 0)");
-    EXPECT_EQ(errorOf(R"({"type": "blobs", "threshold": -0.5, "blobs": [{}]})"),
+    EXPECT_EQ(implicitError(R"({"type": "blobs", "threshold": -0.5, "blobs": [{}]})"),
               "scene.json: /shapes/0/surface: parameter 'threshold' must be > 0 (got -0.5)");
-    EXPECT_EQ(errorOf(R"({"type": "blobs", "blobs": []})"),
+    EXPECT_EQ(implicitError(R"({"type": "blobs", "blobs": []})"),
               "scene.json: /shapes/0/surface: blobs need at least one blob");
-    EXPECT_EQ(errorOf(R"({"type": "gyroid", "period": 0})", kBox),
+    EXPECT_EQ(implicitError(R"({"type": "gyroid", "period": 0})", kBox),
               "scene.json: /shapes/0/surface: parameter 'period' must be > 0 (got 0)");
-    EXPECT_EQ(errorOf(R"({"type": "neovius", "thickness": -1})", kBox),
+    EXPECT_EQ(implicitError(R"({"type": "neovius", "thickness": -1})", kBox),
               "scene.json: /shapes/0/surface: parameter 'thickness' must be ≥ 0 (got -1)");
-    EXPECT_EQ(errorOf(R"({"type": "quadric", "coefficients": {"c": 1}})", kBox),
+    EXPECT_EQ(implicitError(R"({"type": "quadric", "coefficients": {"c": 1}})", kBox),
               "scene.json: /shapes/0/surface: quadric coefficients are all zero apart from the "
               "constant");
     // Values that are not finite floats are caught where they are read.
-    EXPECT_EQ(errorOf(R"({"type": "sphere", "radius": 1e300})"),
+    EXPECT_EQ(implicitError(R"({"type": "sphere", "radius": 1e300})"),
               "scene.json: /shapes/0/surface/radius: must be a finite number within float range, "
               "got 1e+300");
-    EXPECT_EQ(errorOf(R"({"type": "sphere", "radius": "big"})"),
+    EXPECT_EQ(implicitError(R"({"type": "sphere", "radius": "big"})"),
               "scene.json: /shapes/0/surface/radius: expected a number, got string");
     // Inside an operand, the operand's pointer.
     EXPECT_EQ(
-        errorOf(R"({"type": "union", "operands": [{"type": "sphere"}, {"type": "sphere", "radius": -2}]})"),
+        implicitError(R"({"type": "union", "operands": [{"type": "sphere"}, {"type": "sphere", "radius": -2}]})"),
         "scene.json: /shapes/0/surface/operands/1: parameter 'radius' must be > 0 (got -2)");
 }
 
 TEST(ImplicitSceneErrors, CellsOutOfRange) {
-    EXPECT_EQ(errorOf(R"({"type": "torus"})", R"("cells": 0)"),
+    EXPECT_EQ(implicitError(R"({"type": "torus"})", R"("cells": 0)"),
               "scene.json: /shapes/0/cells: must be between 1 and 256, got 0");
-    EXPECT_EQ(errorOf(R"({"type": "torus"})", R"("cells": 257)"),
+    EXPECT_EQ(implicitError(R"({"type": "torus"})", R"("cells": 257)"),
               "scene.json: /shapes/0/cells: must be between 1 and 256, got 257");
-    EXPECT_EQ(errorOf(R"({"type": "torus"})", R"("cells": 2.5)"),
+    EXPECT_EQ(implicitError(R"({"type": "torus"})", R"("cells": 2.5)"),
               "scene.json: /shapes/0/cells: expected an integer, got number 2.5");
 }
 
 TEST(ImplicitSceneErrors, ToleranceOutOfRange) {
-    EXPECT_EQ(errorOf(R"({"type": "torus"})", R"("tolerance": 0.5)"),
+    EXPECT_EQ(implicitError(R"({"type": "torus"})", R"("tolerance": 0.5)"),
               "scene.json: /shapes/0/tolerance: must lie in [1e-12, 0.1], got 0.5");
-    EXPECT_EQ(errorOf(R"({"type": "torus"})", R"("tolerance": 1e-13)"),
+    EXPECT_EQ(implicitError(R"({"type": "torus"})", R"("tolerance": 1e-13)"),
               "scene.json: /shapes/0/tolerance: must lie in [1e-12, 0.1], got 1e-13");
-    EXPECT_EQ(errorOf(R"({"type": "torus"})", R"("tolerance": 0)"),
+    EXPECT_EQ(implicitError(R"({"type": "torus"})", R"("tolerance": 0)"),
               "scene.json: /shapes/0/tolerance: must lie in [1e-12, 0.1], got 0");
 }
 
 TEST(ImplicitSceneErrors, UnknownSurfaceTypeAndKeys) {
-    EXPECT_EQ(errorOf(R"({"type": "cube"})"),
+    EXPECT_EQ(implicitError(R"({"type": "cube"})"),
               "scene.json: /shapes/0/surface/type: must be one of sphere, quadric, torus, "
               "superellipsoid, blobs, gyroid, schwarz_p, schwarz_d, neovius, formula, union, "
               "intersection, difference, smooth_union, got 'cube'");
-    EXPECT_EQ(errorOf(R"({"type": "torus", "radius": 1})"),
+    EXPECT_EQ(implicitError(R"({"type": "torus", "radius": 1})"),
               "scene.json: /shapes/0/surface: unknown key 'radius' (allowed: type, transform, "
               "major_radius, minor_radius)");
-    EXPECT_EQ(errorOf(R"({"type": "quadric", "coefficients": {"ww": 1}})", kBox),
+    EXPECT_EQ(implicitError(R"({"type": "quadric", "coefficients": {"ww": 1}})", kBox),
               "scene.json: /shapes/0/surface/coefficients: unknown key 'ww' (allowed: xx, yy, zz, "
               "xy, yz, xz, x, y, z, c)");
-    EXPECT_EQ(errorOf(R"({"type": "blobs", "blobs": [{"colour": 1}]})"),
+    EXPECT_EQ(implicitError(R"({"type": "blobs", "blobs": [{"colour": 1}]})"),
               "scene.json: /shapes/0/surface/blobs/0: unknown key 'colour' (allowed: center, "
               "radius, strength)");
-    EXPECT_EQ(errorOf(R"({"type": "sphere"})", R"("boxx": 1)"),
+    EXPECT_EQ(implicitError(R"({"type": "sphere"})", R"("boxx": 1)"),
               "scene.json: /shapes/0: unknown key 'boxx' (allowed: type, name, material, "
               "transform, motion, surface, box, cells, tolerance)");
-    EXPECT_EQ(errorOf(R"({"type": "gyroid", "blend": 1})", kBox),
+    EXPECT_EQ(implicitError(R"({"type": "gyroid", "blend": 1})", kBox),
               "scene.json: /shapes/0/surface: unknown key 'blend' (allowed: type, transform, "
               "period, level, thickness)");
-    EXPECT_EQ(test::errorMessage([] { parse(sceneWith(R"({"type": "implicit"})")); }),
+    EXPECT_EQ(test::errorMessage([] { parseJson(sceneWith(R"({"type": "implicit"})")); }),
               "scene.json: /shapes/0: missing key 'surface'");
-    EXPECT_EQ(errorOf("3"), "scene.json: /shapes/0/surface: expected a surface object, got number 3");
-    EXPECT_EQ(errorOf("{}"), "scene.json: /shapes/0/surface: missing key 'type'");
+    EXPECT_EQ(implicitError("3"), "scene.json: /shapes/0/surface: expected a surface object, got number 3");
+    EXPECT_EQ(implicitError("{}"), "scene.json: /shapes/0/surface: missing key 'type'");
 }
 
 TEST(ImplicitSceneErrors, CsgOperands) {
-    EXPECT_EQ(errorOf(R"({"type": "union", "operands": [{"type": "sphere"}]})"),
+    EXPECT_EQ(implicitError(R"({"type": "union", "operands": [{"type": "sphere"}]})"),
               "scene.json: /shapes/0/surface/operands: needs at least two operands, got 1");
-    EXPECT_EQ(errorOf(R"({"type": "difference", "operands": []})"),
+    EXPECT_EQ(implicitError(R"({"type": "difference", "operands": []})"),
               "scene.json: /shapes/0/surface/operands: needs at least two operands, got 0");
-    EXPECT_EQ(errorOf(R"({"type": "intersection"})"),
+    EXPECT_EQ(implicitError(R"({"type": "intersection"})"),
               "scene.json: /shapes/0/surface: missing key 'operands'");
-    EXPECT_EQ(errorOf(R"({"type": "smooth_union", "operands": [{"type": "sphere"}, {"type": "torus"}]})"),
+    EXPECT_EQ(implicitError(R"({"type": "smooth_union", "operands": [{"type": "sphere"}, {"type": "torus"}]})"),
               "scene.json: /shapes/0/surface: missing key 'blend'");
-    EXPECT_EQ(errorOf(R"({"type": "smooth_union", "blend": 0,
+    EXPECT_EQ(
+        implicitError(R"({"type": "smooth_union", "blend": 0,
                          "operands": [{"type": "sphere"}, {"type": "torus"}]})"),
-              "scene.json: /shapes/0/surface: parameter 'blend' must be a finite number > 0 (got 0)");
-    EXPECT_EQ(errorOf(R"({"type": "smooth_union", "blend": -1,
+        "scene.json: /shapes/0/surface: parameter 'blend' must be a finite number > 0 (got 0)");
+    EXPECT_EQ(
+        implicitError(R"({"type": "smooth_union", "blend": -1,
                          "operands": [{"type": "sphere"}, {"type": "torus"}]})"),
-              "scene.json: /shapes/0/surface: parameter 'blend' must be a finite number > 0 (got -1)");
+        "scene.json: /shapes/0/surface: parameter 'blend' must be a finite number > 0 (got -1)");
     // blend belongs to smooth_union only
-    EXPECT_TRUE(contains(errorOf(twoSpheres("union", R"("blend": 0.5, )")),
+    EXPECT_TRUE(contains(implicitError(twoSpheres("union", R"("blend": 0.5, )")),
                          "scene.json: /shapes/0/surface: unknown key 'blend'"));
     // A bad operand transform names the operation inside the operand.
-    EXPECT_EQ(errorOf(R"({"type": "union", "operands": [{"type": "sphere"},
+    EXPECT_EQ(
+        implicitError(R"({"type": "union", "operands": [{"type": "sphere"},
                          {"type": "sphere", "transform": [{"scale": 0}]}]})"),
-              "scene.json: /shapes/0/surface/operands/1/transform/0/scale: must be non-zero, got 0");
+        "scene.json: /shapes/0/surface/operands/1/transform/0/scale: must be non-zero, got 0");
 }
 
 TEST(ImplicitSceneErrors, BadBox) {
-    EXPECT_EQ(errorOf(R"({"type": "sphere"})", R"("box": [[1, -1, -1], [-1, 1, 1]])"),
+    EXPECT_EQ(implicitError(R"({"type": "sphere"})", R"("box": [[1, -1, -1], [-1, 1, 1]])"),
               "scene.json: /shapes/0/box: the minimum corner must be below the maximum corner on "
               "every axis");
-    EXPECT_EQ(errorOf(R"({"type": "sphere"})", R"("box": [[1, 1, 1]])"),
+    EXPECT_EQ(implicitError(R"({"type": "sphere"})", R"("box": [[1, 1, 1]])"),
               "scene.json: /shapes/0/box: expected [[xmin, ymin, zmin], [xmax, ymax, zmax]]");
-    EXPECT_EQ(errorOf(R"({"type": "sphere"})", R"("box": [[0, 0, 0], [1, 0, 1]])"),
+    EXPECT_EQ(implicitError(R"({"type": "sphere"})", R"("box": [[0, 0, 0], [1, 0, 1]])"),
               "scene.json: /shapes/0/box: the minimum corner must be below the maximum corner on "
               "every axis");
 }
@@ -585,12 +589,9 @@ TEST(ImplicitSceneErrors, BadBox) {
 // --- errors only buildWorld() finds ---------------------------------------------
 
 std::string buildError(const std::string& shapes) {
-    const SceneDesc desc = parse(R"({"shapes": [)" + shapes + "]}");
+    const SceneDesc desc = parseJson(R"({"shapes": [)" + shapes + "]}");
     return test::errorMessage([&] { buildWorld(desc, BuildOptions{}); });
 }
-
-const std::string kTriangleShape =
-    R"({"type": "mesh", "positions": [[0,0,0],[1,0,0],[0,1,0]], "indices": [0,1,2]})";
 
 TEST(ImplicitSceneBuild, BoxThatMissesTheSurfaceBoundsNamesTheShape) {
     EXPECT_EQ(buildError(kTriangleShape + ", " +

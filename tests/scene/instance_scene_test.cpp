@@ -8,6 +8,7 @@
 
 #include <string>
 
+#include "scene_test_helpers.h"
 #include "strahl/core/error.h"
 #include "strahl/core/transform.h"
 #include "strahl/scene/scene_builder.h"
@@ -18,15 +19,10 @@ namespace strahl {
 namespace {
 
 using test::contains;
+using test::kTriangleShape;
+using test::parseError;
+using test::parseJson;
 
-SceneDesc parse(const std::string& text) { return parseSceneText(text, "scene.json"); }
-
-std::string errorOf(const std::string& text) {
-    return test::errorMessage([&] { parse(text); });
-}
-
-const std::string kTriangle =
-    R"({"type": "mesh", "positions": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "indices": [0, 1, 2]})";
 const std::string kSphere =
     R"({"type": "implicit", "surface": {"type": "sphere", "radius": 0.5}})";
 
@@ -37,19 +33,19 @@ const std::string kNested = R"({
     { "name": "pair", "shapes": [ )" + kSphere + R"(,
         { "type": "instance", "group": "leaf", "transform": [ { "translate": [-1, 0, 0] } ] },
         { "type": "instance", "group": "leaf", "transform": [ { "translate": [1, 0, 0] } ] } ] },
-    { "name": "leaf", "shapes": [ )" + kTriangle + R"( ] },
-    { "name": "unused", "shapes": [ )" + kTriangle + R"( ] }
+    { "name": "leaf", "shapes": [ )" + kTriangleShape + R"( ] },
+    { "name": "unused", "shapes": [ )" + kTriangleShape + R"( ] }
   ],
   "shapes": [
     { "type": "instance", "name": "low", "group": "pair" },
     { "type": "instance", "group": "pair", "transform": [ { "translate": [0, 5, 0] } ] },
     { "type": "instance", "group": "leaf", "transform": [ { "scale": 2 }, { "translate": [0, 0, 3] } ] },
-    )" + kTriangle + R"(
+    )" + kTriangleShape + R"(
   ]
 })";
 
 TEST(InstanceScene, ParsesGroupsAndInstanceShapes) {
-    const SceneDesc desc = parse(kNested);
+    const SceneDesc desc = parseJson(kNested);
     ASSERT_EQ(desc.groups.size(), 3u);
     EXPECT_EQ(desc.groups[0].name, "pair");
     EXPECT_EQ(desc.groups[0].where, "/groups/0");
@@ -67,7 +63,7 @@ TEST(InstanceScene, ParsesGroupsAndInstanceShapes) {
 }
 
 TEST(InstanceScene, NestedGroupsAreFlattenedWithComposedTransforms) {
-    const World world = buildWorld(parse(kNested), BuildOptions{});
+    const World world = buildWorld(parseJson(kNested), BuildOptions{});
     ASSERT_EQ(world.shapes.size(), 1u);  // the top-level triangle
     // "pair" (own shapes: the sphere) and "leaf"; "unused" is not built.
     ASSERT_EQ(world.prototypes.size(), 2u);
@@ -102,9 +98,9 @@ TEST(InstanceScene, NestedGroupsAreFlattenedWithComposedTransforms) {
 }
 
 TEST(InstanceScene, ATopLevelSceneOfInstancesOnlyRenders) {
-    const std::string text = R"({"groups": [{"name": "g", "shapes": [)" + kTriangle +
+    const std::string text = R"({"groups": [{"name": "g", "shapes": [)" + kTriangleShape +
                              R"(]}], "shapes": [{"type": "instance", "group": "g"}]})";
-    const World world = buildWorld(parse(text), BuildOptions{});
+    const World world = buildWorld(parseJson(text), BuildOptions{});
     EXPECT_TRUE(world.shapes.empty());
     ASSERT_EQ(world.instances.size(), 1u);
     Ray ray;
@@ -119,45 +115,45 @@ TEST(InstanceScene, ATopLevelSceneOfInstancesOnlyRenders) {
 }
 
 TEST(InstanceScene, BadGroupsNameThePlace) {
-    const std::string tri = kTriangle;
+    const std::string tri = kTriangleShape;
     auto scene = [](const std::string& groups, const std::string& shapes) {
         return R"({"groups": [)" + groups + R"(], "shapes": [)" + shapes + "]}";
     };
     const std::string placeA = R"({"type": "instance", "group": "a"})";
 
-    EXPECT_EQ(errorOf(scene(R"({"name": "a", "shapes": [)" + tri + "]}",
-                            R"({"type": "instance", "group": "b"})")),
+    EXPECT_EQ(parseError(scene(R"({"name": "a", "shapes": [)" + tri + "]}",
+                               R"({"type": "instance", "group": "b"})")),
               "scene.json: /shapes/0/group: unknown group 'b' (defined: a)");
-    EXPECT_EQ(errorOf(R"({"shapes": [{"type": "instance", "group": "b"}]})"),
+    EXPECT_EQ(parseError(R"({"shapes": [{"type": "instance", "group": "b"}]})"),
               "scene.json: /shapes/0/group: unknown group 'b' (defined: none)");
-    EXPECT_EQ(errorOf(scene(R"({"name": "a", "shapes": [)" + tri + R"(]}, {"name": "a", "shapes": [)" +
-                                tri + "]}",
-                            placeA)),
+    EXPECT_EQ(parseError(scene(R"({"name": "a", "shapes": [)" + tri +
+                                   R"(]}, {"name": "a", "shapes": [)" + tri + "]}",
+                               placeA)),
               "scene.json: /groups/1/name: group 'a' is already defined at /groups/0");
-    EXPECT_EQ(errorOf(scene(R"({"name": "", "shapes": [)" + tri + "]}", placeA)),
+    EXPECT_EQ(parseError(scene(R"({"name": "", "shapes": [)" + tri + "]}", placeA)),
               "scene.json: /groups/0/name: must not be empty");
-    EXPECT_EQ(errorOf(scene(R"({"name": "a", "shapes": []})", placeA)),
+    EXPECT_EQ(parseError(scene(R"({"name": "a", "shapes": []})", placeA)),
               "scene.json: /groups/0/shapes: a group needs at least one shape");
-    EXPECT_TRUE(contains(errorOf(scene(R"({"name": "a", "shapes": [)" + tri + R"(], "color": 1})",
-                                       placeA)),
-                         "scene.json: /groups/0: unknown key 'color'"));
     EXPECT_TRUE(contains(
-        errorOf(scene(R"({"name": "a", "shapes": [)" + tri + "]}",
-                      R"({"type": "instance", "group": "a", "material": "default"})")),
-        "scene.json: /shapes/0: unknown key 'material'"));
+        parseError(scene(R"({"name": "a", "shapes": [)" + tri + R"(], "color": 1})", placeA)),
+        "scene.json: /groups/0: unknown key 'color'"));
+    EXPECT_TRUE(
+        contains(parseError(scene(R"({"name": "a", "shapes": [)" + tri + "]}",
+                                  R"({"type": "instance", "group": "a", "material": "default"})")),
+                 "scene.json: /shapes/0: unknown key 'material'"));
 }
 
 TEST(InstanceScene, CyclesAreRejectedWithTheChain) {
     const std::string self = R"({"groups": [{"name": "a", "shapes": [{"type": "instance", "group": "a"}]}],
                                  "shapes": [{"type": "instance", "group": "a"}]})";
-    EXPECT_EQ(errorOf(self), "scene.json: /groups/0: group 'a' places itself (a -> a)");
+    EXPECT_EQ(parseError(self), "scene.json: /groups/0: group 'a' places itself (a -> a)");
 
     const std::string twoStep = R"({"groups": [
         {"name": "a", "shapes": [{"type": "instance", "group": "b"}]},
-        {"name": "b", "shapes": [)" + kTriangle + R"(, {"type": "instance", "group": "a"}]}],
-      "shapes": [)" + kTriangle + "]}";
+        {"name": "b", "shapes": [)" + kTriangleShape + R"(, {"type": "instance", "group": "a"}]}],
+      "shapes": [)" + kTriangleShape + "]}";
     // Found even when no top-level shape places the cycle.
-    EXPECT_EQ(errorOf(twoStep), "scene.json: /groups/0: group 'a' places itself (a -> b -> a)");
+    EXPECT_EQ(parseError(twoStep), "scene.json: /groups/0: group 'a' places itself (a -> b -> a)");
 }
 
 // Groups g0 ... g{n-1}, each placing the next `fanOut` times; g{n-1} holds a
@@ -167,7 +163,7 @@ std::string chain(int n, int fanOut) {
     for (int i = 0; i < n; ++i) {
         std::string shapes;
         if (i + 1 == n) {
-            shapes = kTriangle;
+            shapes = kTriangleShape;
         } else {
             for (int k = 0; k < fanOut; ++k) {
                 shapes += (k ? ", " : "") + std::string(R"({"type": "instance", "group": "g)") +
@@ -182,18 +178,18 @@ std::string chain(int n, int fanOut) {
 }
 
 TEST(InstanceScene, NestingDepthIsLimited) {
-    EXPECT_NO_THROW(parse(chain(kMaxGroupNesting, 1)));
-    EXPECT_EQ(errorOf(chain(kMaxGroupNesting + 1, 1)),
+    EXPECT_NO_THROW(parseJson(chain(kMaxGroupNesting, 1)));
+    EXPECT_EQ(parseError(chain(kMaxGroupNesting + 1, 1)),
               "scene.json: /groups/64: groups nest more than 64 levels deep");
 }
 
 TEST(InstanceScene, TooManyInstancesAreRefusedBeforeAllocating) {
     // 16^7 = 2^28 leaf placements, more than the 2^24 limit.
-    const SceneDesc desc = parse(chain(8, 16));
+    const SceneDesc desc = parseJson(chain(8, 16));
     EXPECT_EQ(test::errorMessage([&] { buildWorld(desc, BuildOptions{}); }),
               "scene.json: the groups place more than 16777216 instances (the limit, 2^24)");
     // 16^3 = 4096 is fine, and each is placed once at its composed position.
-    const World world = buildWorld(parse(chain(4, 16)), BuildOptions{});
+    const World world = buildWorld(parseJson(chain(4, 16)), BuildOptions{});
     EXPECT_EQ(world.instances.size(), 4096u);
     EXPECT_EQ(world.prototypes.size(), 1u);
     EXPECT_EQ(transformPoint(world.instances.back().objectToWorld, Vec3(0.0f)), Vec3(45, 0, 0));
@@ -203,7 +199,7 @@ TEST(InstanceScene, AGroupsShapeErrorNamesItsPointer) {
     const std::string text = R"({"groups": [{"name": "g", "shapes": [
         {"type": "implicit", "surface": {"type": "gyroid", "scale": 1}}]}],
       "shapes": [{"type": "instance", "group": "g"}]})";
-    EXPECT_TRUE(contains(errorOf(text), "/groups/0/shapes/0")) << errorOf(text);
+    EXPECT_TRUE(contains(parseError(text), "/groups/0/shapes/0")) << parseError(text);
 }
 
 }  // namespace

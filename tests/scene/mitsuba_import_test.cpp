@@ -34,8 +34,8 @@ using testing::HasSubstr;
 
 // A scene around `body`: a perspective sensor (fov 90 along x, 64 x 32
 // pixels, 16 spp by default), a path integrator and a rectangle.
-std::string scene(const std::string& body, const std::string& integrator =
-                                               R"(<integrator type="path"/>)") {
+std::string xmlScene(const std::string& body,
+                     const std::string& integrator = R"(<integrator type="path"/>)") {
     return R"(<scene version="3.0.0">
   <default name="spp" value="16"/>
   )" + integrator + R"(
@@ -54,21 +54,21 @@ SceneDesc parse(const std::string& text, const SceneDefines& defines = {},
     return SceneDocument::fromText(text, file, defines).parse();
 }
 
-std::string errorOf(const std::string& text, const SceneDefines& defines = {}) {
+std::string xmlError(const std::string& text, const SceneDefines& defines = {}) {
     return test::errorMessage([&] { parse(text, defines); });
 }
 
 TEST(MitsubaImport, DefaultsAreSubstitutedAndMinusDOverridesThem) {
-    EXPECT_EQ(parse(scene("")).render.spp, 16);
-    EXPECT_EQ(parse(scene(""), {{"spp", "4"}}).render.spp, 4);
-    EXPECT_THAT(errorOf(scene(""), {{"sp", "4"}}),
+    EXPECT_EQ(parse(xmlScene("")).render.spp, 16);
+    EXPECT_EQ(parse(xmlScene(""), {{"spp", "4"}}).render.spp, 4);
+    EXPECT_THAT(xmlError(xmlScene(""), {{"sp", "4"}}),
                 HasSubstr("scene.xml: -D sp: the scene has no <default name=\"sp\"> and no $sp"));
-    EXPECT_THAT(errorOf(scene(R"(<emitter type="point"><rgb name="intensity" value="$power"/></emitter>)")),
+    EXPECT_THAT(xmlError(xmlScene(R"(<emitter type="point"><rgb name="intensity" value="$power"/></emitter>)")),
                 HasSubstr("scene.xml:11: $power: no <default> or -D gives it a value"));
 }
 
 TEST(MitsubaImport, TheSensorBecomesTheCameraWithAVerticalFov) {
-    const SceneDesc d = parse(scene(""));
+    const SceneDesc d = parse(xmlScene(""));
     EXPECT_EQ(d.film.width, 64);
     EXPECT_EQ(d.film.height, 32);
     EXPECT_EQ(d.camera.eye, Vec3(0, 0, 5));
@@ -81,7 +81,7 @@ TEST(MitsubaImport, TheSensorBecomesTheCameraWithAVerticalFov) {
 }
 
 TEST(MitsubaImport, WithoutAFovTheSensorHasMitsubasFiftyMillimetreLens) {
-    std::string text = scene("");
+    std::string text = xmlScene("");
     text.replace(text.find(R"(<float name="fov" value="90"/>)"), 30, "");
     // 50 mm on 36 x 24 mm film along the diagonal: 46.793°; on a 2:1 film
     // the vertical half-angle's tangent is tan(23.40°) / sqrt(5).
@@ -90,7 +90,7 @@ TEST(MitsubaImport, WithoutAFovTheSensorHasMitsubasFiftyMillimetreLens) {
 }
 
 TEST(MitsubaImport, AThinLensSensorKeepsItsLens) {
-    std::string text = scene("");
+    std::string text = xmlScene("");
     text.replace(text.find(R"(<sensor type="perspective">)"), 27,
                  R"(<sensor type="thinlens"><float name="aperture_radius" value="0.1"/>)");
     const SceneDesc lens = parse(text);
@@ -99,29 +99,29 @@ TEST(MitsubaImport, AThinLensSensorKeepsItsLens) {
     text.replace(text.find("<float name=\"aperture_radius\""), 0,
                  R"(<float name="focus_distance" value="4"/>)");
     EXPECT_FLOAT_EQ(*parse(text).camera.focusDistance, 4.0f);
-    EXPECT_THAT(errorOf(scene(R"()").replace(scene("").find("<float name=\"fov\""), 0,
-                                              R"(<float name="aperture_radius" value="0.1"/>)")),
+    EXPECT_THAT(xmlError(xmlScene(R"()").replace(xmlScene("").find("<float name=\"fov\""), 0,
+                                                 R"(<float name="aperture_radius" value="0.1"/>)")),
                 HasSubstr("aperture_radius and focus_distance belong to a thinlens sensor"));
 }
 
 TEST(MitsubaImport, MaxDepthCountsVerticesInMitsubaAndBouncesInStrahl) {
     const auto depth = [](const std::string& value) {
-        return parse(scene("", R"(<integrator type="path"><integer name="max_depth" value=")" +
-                                    value + R"("/></integrator>)"))
+        return parse(xmlScene("", R"(<integrator type="path"><integer name="max_depth" value=")" +
+                                      value + R"("/></integrator>)"))
             .render.maxDepth;
     };
     EXPECT_EQ(depth("1"), 0);   // emitters seen directly
     EXPECT_EQ(depth("2"), 1);   // and direct light
     EXPECT_EQ(depth("-1"), 1024);  // unlimited: strahl's most
-    EXPECT_THAT(errorOf(scene("", R"(<integrator type="path"><integer name="max_depth" value="0"/></integrator>)")),
+    EXPECT_THAT(xmlError(xmlScene("", R"(<integrator type="path"><integer name="max_depth" value="0"/></integrator>)")),
                 HasSubstr("max_depth must be -1 or at least 1"));
-    const SceneDesc wrapped = parse(scene("", R"(<integrator type="moment"><integrator type="direct"/></integrator>)"));
+    const SceneDesc wrapped = parse(xmlScene("", R"(<integrator type="moment"><integrator type="direct"/></integrator>)"));
     EXPECT_EQ(wrapped.render.integrator, "direct");
 }
 
 TEST(MitsubaImport, RrDepthIsTheBounceRouletteStartsAfter) {
     const auto rrDepth = [](const std::string& integrator) {
-        return parse(scene("", integrator)).render.russianRouletteDepth;
+        return parse(xmlScene("", integrator)).render.russianRouletteDepth;
     };
     EXPECT_EQ(rrDepth(R"(<integrator type="path"/>)"), 5);  // Mitsuba's default
     EXPECT_EQ(rrDepth(R"(<integrator type="path"><integer name="rr_depth" value="2"/></integrator>)"), 2);
@@ -132,7 +132,7 @@ TEST(MitsubaImport, RrDepthIsTheBounceRouletteStartsAfter) {
 // rectangle's default comes first).
 template <typename K>
 K cubeMaterial(const std::string& bsdf) {
-    const SceneDesc d = parse(scene(R"(<shape type="cube">)" + bsdf + "</shape>"));
+    const SceneDesc d = parse(xmlScene(R"(<shape type="cube">)" + bsdf + "</shape>"));
     const K* kind = d.materials.size() == 2 ? std::get_if<K>(&d.materials[1].material.kind) : nullptr;
     if (!kind) {
         ADD_FAILURE() << "not the expected material kind: " << bsdf;
@@ -163,11 +163,11 @@ TEST(MitsubaImport, ConductorsTakeMitsubasNamedMaterialsAndItsMicrofacetModel) {
     EXPECT_EQ(given.eta, Color(0.789f));
     EXPECT_EQ(given.microfacets.type, MicrofacetType::Beckmann);
     EXPECT_NEAR(given.roughnessU.value, std::sqrt(0.1f), 1e-6f);
-    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="conductor"><string name="material" value="K"/></bsdf></shape>)")),
+    EXPECT_THAT(xmlError(xmlScene(R"(<shape type="cube"><bsdf type="conductor"><string name="material" value="K"/></bsdf></shape>)")),
                 HasSubstr("scene.xml:11: <bsdf type=\"conductor\">: the conductor material 'K' is not available"));
-    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="roughconductor"><float name="alpha_u" value="0.2"/></bsdf></shape>)")),
+    EXPECT_THAT(xmlError(xmlScene(R"(<shape type="cube"><bsdf type="roughconductor"><float name="alpha_u" value="0.2"/></bsdf></shape>)")),
                 HasSubstr("give either alpha or both alpha_u and alpha_v"));
-    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="conductor"><rgb name="specular_reflectance" value="0.5"/></bsdf></shape>)")),
+    EXPECT_THAT(xmlError(xmlScene(R"(<shape type="cube"><bsdf type="conductor"><rgb name="specular_reflectance" value="0.5"/></bsdf></shape>)")),
                 HasSubstr("'specular_reflectance' other than 1 is not supported"));
 }
 
@@ -194,11 +194,11 @@ TEST(MitsubaImport, DielectricsAndPlasticsTakeTheRatioOfNamedIors) {
     EXPECT_TRUE(rough.microfacetCoat);
     ASSERT_NE(rough.roughCoat, nullptr);  // tabulated for alpha 0.1
     EXPECT_FLOAT_EQ(rough.roughCoat->eta(), rough.ior);
-    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="dielectric"><string name="int_ior" value="unobtainium"/></bsdf></shape>)")),
+    EXPECT_THAT(xmlError(xmlScene(R"(<shape type="cube"><bsdf type="dielectric"><string name="int_ior" value="unobtainium"/></bsdf></shape>)")),
                 HasSubstr("unknown int_ior 'unobtainium' (known: vacuum, helium"));
-    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="dielectric"><string name="int_ior" value="air"/><string name="ext_ior" value="water"/></bsdf></shape>)")),
+    EXPECT_THAT(xmlError(xmlScene(R"(<shape type="cube"><bsdf type="dielectric"><string name="int_ior" value="air"/><string name="ext_ior" value="water"/></bsdf></shape>)")),
                 HasSubstr("strahl's interfaces need a relative index in [1.0001, 4]"));
-    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="roughdielectric"><float name="alpha_u" value="0.1"/><float name="alpha_v" value="0.2"/></bsdf></shape>)")),
+    EXPECT_THAT(xmlError(xmlScene(R"(<shape type="cube"><bsdf type="roughdielectric"><float name="alpha_u" value="0.1"/><float name="alpha_v" value="0.2"/></bsdf></shape>)")),
                 HasSubstr("an anisotropic roughness (alpha_u, alpha_v) is only supported on conductors"));
 }
 
@@ -209,16 +209,16 @@ TEST(MitsubaImport, AThinDielectricIsAThinSheetOfTheRatioOfIors) {
 }
 
 TEST(MitsubaImport, AMaskIsTheOpacityOfItsNestedBsdf) {
-    const SceneDesc d = parse(scene(R"(<shape type="cube"><bsdf type="mask">
+    const SceneDesc d = parse(xmlScene(R"(<shape type="cube"><bsdf type="mask">
         <float name="opacity" value="0.25"/>
         <bsdf type="twosided"><bsdf type="roughconductor"/></bsdf></bsdf></shape>)"));
     ASSERT_EQ(d.materials.size(), 2u);
     EXPECT_NE(std::get_if<ConductorMaterial>(&d.materials[1].material.kind), nullptr);
     EXPECT_EQ(d.materials[1].material.opacity.value, 0.25f);
     // Mitsuba's default opacity is 0.5.
-    const SceneDesc half = parse(scene(R"(<shape type="cube"><bsdf type="mask"><bsdf type="diffuse"/></bsdf></shape>)"));
+    const SceneDesc half = parse(xmlScene(R"(<shape type="cube"><bsdf type="mask"><bsdf type="diffuse"/></bsdf></shape>)"));
     EXPECT_EQ(half.materials[1].material.opacity.value, 0.5f);
-    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="mask"><rgb name="opacity" value="0.1, 0.2, 0.3"/><bsdf type="diffuse"/></bsdf></shape>)")),
+    EXPECT_THAT(xmlError(xmlScene(R"(<shape type="cube"><bsdf type="mask"><rgb name="opacity" value="0.1, 0.2, 0.3"/><bsdf type="diffuse"/></bsdf></shape>)")),
                 HasSubstr("'opacity' must be one number or a texture"));
 }
 
@@ -239,11 +239,11 @@ TEST(MitsubaImport, ABlendbsdfIsABlendOfItsTwoBsdfsWeightedByANumberOrAMeshAttri
     EXPECT_EQ(coloured.color.texture.meshAttribute, "vertex_color");
     EXPECT_EQ(coloured.color.value, Color(0.5f));
 
-    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="blendbsdf"><float name="weight" value="0.5"/><bsdf type="diffuse"/></bsdf></shape>)")),
+    EXPECT_THAT(xmlError(xmlScene(R"(<shape type="cube"><bsdf type="blendbsdf"><float name="weight" value="0.5"/><bsdf type="diffuse"/></bsdf></shape>)")),
                 HasSubstr(R"(<bsdf type="blendbsdf">: needs two nested <bsdf>s)"));
-    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="blendbsdf"><bsdf type="diffuse"/><bsdf type="diffuse"/></bsdf></shape>)")),
+    EXPECT_THAT(xmlError(xmlScene(R"(<shape type="cube"><bsdf type="blendbsdf"><bsdf type="diffuse"/><bsdf type="diffuse"/></bsdf></shape>)")),
                 HasSubstr(R"(<bsdf type="blendbsdf">: needs a weight)"));
-    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="blendbsdf"><float name="weight" value="0.5"/>
+    EXPECT_THAT(xmlError(xmlScene(R"(<shape type="cube"><bsdf type="blendbsdf"><float name="weight" value="0.5"/>
         <bsdf type="diffuse"/><bsdf type="mask"><bsdf type="diffuse"/></bsdf></bsdf></shape>)")),
                 HasSubstr(R"(<bsdf type="mask">: a normalmap, bumpmap, mask or null BSDF inside a blendbsdf is not supported)"));
 }
@@ -270,11 +270,11 @@ TEST(MitsubaImport, PrincipledBsdfsKeepTheirParametersUnderStrahlsNames) {
     EXPECT_EQ(thin.diffuseTransmission.value, 1.4f);
     EXPECT_EQ(thin.eta, 1.33f);
 
-    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="principledthin"><float name="metallic" value="0.5"/></bsdf></shape>)")),
+    EXPECT_THAT(xmlError(xmlScene(R"(<shape type="cube"><bsdf type="principledthin"><float name="metallic" value="0.5"/></bsdf></shape>)")),
                 HasSubstr("the parameter 'metallic' is not supported"));
-    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="principled"><rgb name="sheen" value="0.1, 0.2, 0.3"/></bsdf></shape>)")),
+    EXPECT_THAT(xmlError(xmlScene(R"(<shape type="cube"><bsdf type="principled"><rgb name="sheen" value="0.1, 0.2, 0.3"/></bsdf></shape>)")),
                 HasSubstr("'sheen' must be one number or a texture"));
-    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="principled"><texture name="sheeen" type="checkerboard"/></bsdf></shape>)")),
+    EXPECT_THAT(xmlError(xmlScene(R"(<shape type="cube"><bsdf type="principled"><texture name="sheeen" type="checkerboard"/></bsdf></shape>)")),
                 HasSubstr("not a parameter of principled"));
 }
 
@@ -288,8 +288,8 @@ float hitDistance(const World& world, Vec3 origin, Vec3 dir) {
 }
 
 TEST(MitsubaImport, DisksCylindersAndEmittingSpheresAreMeshesOrExactSurfaces) {
-    // The rectangle of scene() is at z = 0 in [-1, 1]²: these shapes sit above it.
-    const World world = buildWorld(parse(scene(R"(
+    // The rectangle of xmlScene() is at z = 0 in [-1, 1]²: these shapes sit above it.
+    const World world = buildWorld(parse(xmlScene(R"(
         <shape type="disk"><transform name="to_world"><scale value="0.5"/><translate z="2"/></transform></shape>
         <shape type="cylinder"><point name="p0" x="3" y="0" z="0"/><point name="p1" x="3" y="0" z="2"/>
             <float name="radius" value="0.5"/></shape>
@@ -313,24 +313,24 @@ TEST(MitsubaImport, DisksCylindersAndEmittingSpheresAreMeshesOrExactSurfaces) {
     EXPECT_NEAR(hitDistance(world, Vec3(-3, 0, 5), Vec3(0, 0, -1)), 3.5f, 1e-4f);
     EXPECT_GT(world.lightSet.lights().size(), 1000u);
 
-    const SceneDesc d = parse(scene(R"(<shape type="disk"/>)"));
+    const SceneDesc d = parse(xmlScene(R"(<shape type="disk"/>)"));
     EXPECT_EQ(d.shapes.back().kind, ShapeKind::Parametric);
-    EXPECT_THAT(errorOf(scene(R"(<shape type="cylinder"><point name="p1" x="0" y="0" z="0"/></shape>)")),
+    EXPECT_THAT(xmlError(xmlScene(R"(<shape type="cylinder"><point name="p1" x="0" y="0" z="0"/></shape>)")),
                 HasSubstr("p0 and p1 must differ"));
-    EXPECT_THAT(errorOf(scene(R"(<shape type="disk"><bsdf type="diffuse"><texture name="reflectance" type="checkerboard"/></bsdf></shape>)")),
+    EXPECT_THAT(xmlError(xmlScene(R"(<shape type="disk"><bsdf type="diffuse"><texture name="reflectance" type="checkerboard"/></bsdf></shape>)")),
                 HasSubstr("a textured material on a Mitsuba disk is not supported"));
 }
 
 TEST(MitsubaImport, HideEmittersIsTheRenderSetting) {
-    EXPECT_TRUE(parse(scene("", R"(<integrator type="path"><boolean name="hide_emitters" value="true"/></integrator>)"))
+    EXPECT_TRUE(parse(xmlScene("", R"(<integrator type="path"><boolean name="hide_emitters" value="true"/></integrator>)"))
                     .render.hideEmitters);
-    EXPECT_TRUE(parse(scene("", R"(<integrator type="direct"><boolean name="hide_emitters" value="true"/></integrator>)"))
+    EXPECT_TRUE(parse(xmlScene("", R"(<integrator type="direct"><boolean name="hide_emitters" value="true"/></integrator>)"))
                     .render.hideEmitters);
-    EXPECT_FALSE(parse(scene("")).render.hideEmitters);
+    EXPECT_FALSE(parse(xmlScene("")).render.hideEmitters);
 }
 
 TEST(MitsubaImport, AFilmCropIsTheScenesCrop) {
-    std::string text = scene("");
+    std::string text = xmlScene("");
     const std::string film = R"(<integer name="height" value="32"/>)";
     text.replace(text.find(film), film.size(),
                  film + R"(<integer name="crop_offset_x" value="8"/><integer name="crop_offset_y" value="4"/>
@@ -341,24 +341,24 @@ TEST(MitsubaImport, AFilmCropIsTheScenesCrop) {
     EXPECT_EQ(d.film.crop->y0, 4);
     EXPECT_EQ(d.film.crop->x1, 24);
     EXPECT_EQ(d.film.crop->y1, 32);  // the rest of the film's height
-    std::string outside = scene("");
+    std::string outside = xmlScene("");
     outside.replace(outside.find(film), film.size(), film + R"(<integer name="crop_width" value="65"/>)");
-    EXPECT_THAT(errorOf(outside), HasSubstr("must lie inside the film"));
-    EXPECT_FALSE(parse(scene("")).film.crop.has_value());
+    EXPECT_THAT(xmlError(outside), HasSubstr("must lie inside the film"));
+    EXPECT_FALSE(parse(xmlScene("")).film.crop.has_value());
 }
 
 TEST(MitsubaImport, ANullBsdfIsAnInvisibleSurfaceButNoInvisibleLight) {
-    const SceneDesc d = parse(scene(R"(<shape type="cube"><bsdf type="null"/></shape>)"));
+    const SceneDesc d = parse(xmlScene(R"(<shape type="cube"><bsdf type="null"/></shape>)"));
     ASSERT_EQ(d.materials.size(), 2u);
     EXPECT_EQ(d.materials[1].material.opacity.value, 0.0f);
-    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="null"/><emitter type="area"/></shape>)")),
+    EXPECT_THAT(xmlError(xmlScene(R"(<shape type="cube"><bsdf type="null"/><emitter type="area"/></shape>)")),
                 HasSubstr(R"(<bsdf type="null">: an emitter with a null BSDF (an invisible light) is not supported)"));
 }
 
 TEST(MitsubaImport, ANormalmapIsTheNormalMapOfItsNestedBsdfWithTerminatorShadowing) {
     const fs::path dir = test::scratchDir("mitsuba-normalmap");
     test::writeFile(dir / "n.png", "not read while parsing");
-    const SceneDesc d = parse(scene(R"(<shape type="cube"><bsdf type="normalmap">
+    const SceneDesc d = parse(xmlScene(R"(<shape type="cube"><bsdf type="normalmap">
         <texture name="normalmap" type="bitmap"><boolean name="raw" value="true"/>
           <string name="filename" value="n.png"/></texture>
         <bsdf type="diffuse"/></bsdf></shape>)"), {}, dir / "scene.xml");
@@ -367,11 +367,11 @@ TEST(MitsubaImport, ANormalmapIsTheNormalMapOfItsNestedBsdfWithTerminatorShadowi
     EXPECT_TRUE(m.terminatorShadowing);
     EXPECT_EQ(m.normalMap.sampling.filter, TextureFilter::Bilinear);  // Mitsuba's point reads
     // The identity constant adds nothing; other constants are refused.
-    const SceneDesc identity = parse(scene(R"(<shape type="cube"><bsdf type="normalmap">
+    const SceneDesc identity = parse(xmlScene(R"(<shape type="cube"><bsdf type="normalmap">
         <texture name="normalmap" type="rawconstant"><vector name="value" value="0.5, 0.5, 1"/></texture>
         <bsdf type="diffuse"/></bsdf></shape>)"));
     EXPECT_TRUE(identity.materials.at(1).material.normalMap.file.empty());
-    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="normalmap">
+    EXPECT_THAT(xmlError(xmlScene(R"(<shape type="cube"><bsdf type="normalmap">
         <texture name="normalmap" type="rawconstant"><vector name="value" value="0.6, 0.5, 1"/></texture>
         <bsdf type="diffuse"/></bsdf></shape>)")),
                 HasSubstr("a constant normal map other than the identity (0.5, 0.5, 1) is not supported"));
@@ -379,25 +379,25 @@ TEST(MitsubaImport, ANormalmapIsTheNormalMapOfItsNestedBsdfWithTerminatorShadowi
 
 TEST(MitsubaImport, ReconstructionFilters) {
     const auto filmWith = [](const std::string& rfilter) {
-        std::string text = scene("");
+        std::string text = xmlScene("");
         const std::string film = R"(<film type="hdrfilm">)";
         text.replace(text.find(film), film.size(), film + rfilter);
         return text;
     };
-    const SceneDesc gaussian = parse(scene(""));  // Mitsuba's default: Gaussian, sigma 0.5
+    const SceneDesc gaussian = parse(xmlScene(""));  // Mitsuba's default: Gaussian, sigma 0.5
     EXPECT_EQ(gaussian.film.filter, "gaussian");
     EXPECT_EQ(gaussian.film.filterRadius, 2.0f);
     const SceneDesc tent = parse(filmWith(R"(<rfilter type="tent"><float name="radius" value="1.5"/></rfilter>)"));
     EXPECT_EQ(tent.film.filter, "tent");
     EXPECT_EQ(tent.film.filterRadius, 1.5f);
-    EXPECT_THAT(errorOf(filmWith(R"(<rfilter type="mitchell"/>)")),
+    EXPECT_THAT(xmlError(filmWith(R"(<rfilter type="mitchell"/>)")),
                 HasSubstr("this reconstruction filter is not supported (box, tent and gaussian are)"));
 }
 
 TEST(MitsubaImport, TransformsApplyInTheOrderWritten) {
     const fs::path dir = test::scratchDir("mitsuba-transform");
     test::writeFile(dir / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-    const SceneDesc d = parse(scene(R"(<shape type="obj" id="moved">
+    const SceneDesc d = parse(xmlScene(R"(<shape type="obj" id="moved">
     <string name="filename" value="tri.obj"/>
     <transform name="to_world"><translate x="1"/><scale value="2"/></transform>
   </shape>)"), {}, dir / "scene.xml");
@@ -412,7 +412,7 @@ TEST(MitsubaImport, SpectrumFilesAreTheSpectraTheyList) {
     const fs::path dir = test::scratchDir("mitsuba-spd");
     test::writeFile(dir / "spectra/red.spd", "# a comment\n400 0.1\n\n500 0.3  # another\n600 0.8\n");
     const auto reflectance = [&](const std::string& spectrum) {
-        test::writeFile(dir / "scene.xml", scene(R"(<path value="spectra"/>
+        test::writeFile(dir / "scene.xml", xmlScene(R"(<path value="spectra"/>
   <shape type="cube"><bsdf type="diffuse">)" + spectrum + "</bsdf></shape>"));
         return SceneDocument::read(dir / "scene.xml").parse().materials.at(1).material;
     };
@@ -429,29 +429,29 @@ TEST(MitsubaImport, SpectrumFilesAreTheSpectraTheyList) {
 TEST(MitsubaImport, SerializedShapesPickTheirMeshByShapeIndex) {
     const fs::path dir = test::scratchDir("mitsuba-serialized");
     test::writeFile(dir / "scene.serialized", "read when the world is built");
-    const SceneDesc d = parse(scene(R"(<shape type="serialized"><string name="filename" value="scene.serialized"/>
+    const SceneDesc d = parse(xmlScene(R"(<shape type="serialized"><string name="filename" value="scene.serialized"/>
         <integer name="shape_index" value="2"/></shape>)"), {}, dir / "scene.xml");
     EXPECT_EQ(d.shapes.at(1).file.filename(), "scene.serialized");
     EXPECT_EQ(d.shapes.at(1).shapeIndex, 2u);
     EXPECT_EQ(d.shapes.at(1).fileNormals, ShapeDesc::FileNormals::Smooth);  // Mitsuba computes them
     test::writeFile(dir / "mesh.bin", "x");
     EXPECT_THAT(test::errorMessage([&] {
-                    parse(scene(R"(<shape type="serialized"><string name="filename" value="mesh.bin"/></shape>)"),
+                    parse(xmlScene(R"(<shape type="serialized"><string name="filename" value="mesh.bin"/></shape>)"),
                           {}, dir / "scene.xml");
                 }),
                 HasSubstr("the file must end in .serialized"));
 }
 
 TEST(MitsubaImport, FlipNormalsTurnsAMeshAround) {
-    const SceneDesc d = parse(scene(R"(<shape type="cube"><boolean name="flip_normals" value="true"/></shape>)"));
+    const SceneDesc d = parse(xmlScene(R"(<shape type="cube"><boolean name="flip_normals" value="true"/></shape>)"));
     EXPECT_TRUE(d.shapes.at(1).flipNormals);
     EXPECT_FALSE(d.shapes.at(0).flipNormals);
-    EXPECT_THAT(errorOf(scene(R"(<shape type="sphere"><boolean name="flip_normals" value="true"/></shape>)")),
+    EXPECT_THAT(xmlError(xmlScene(R"(<shape type="sphere"><boolean name="flip_normals" value="true"/></shape>)")),
                 HasSubstr("flip_normals on a sphere is not supported yet"));
 }
 
 TEST(MitsubaImport, IdsAndRefsShareOneMaterialAndLightsMap) {
-    const SceneDesc d = parse(scene(R"(
+    const SceneDesc d = parse(xmlScene(R"(
   <bsdf type="diffuse" id="red"><rgb name="reflectance" value="0.8, 0.1, 0.1"/></bsdf>
   <shape type="sphere"><float name="radius" value="0.5"/><ref id="red"/></shape>
   <shape type="cube"><ref id="red"/></shape>
@@ -471,40 +471,40 @@ TEST(MitsubaImport, IncludesAreSplicedInAndCyclesRefused) {
     test::writeFile(dir / "parts/light.xml", R"(<scene version="3.0.0">
   <emitter type="point"><point name="position" x="0" y="2" z="0"/></emitter>
 </scene>)");
-    test::writeFile(dir / "main.xml", scene(R"(<include filename="parts/light.xml"/>)"));
+    test::writeFile(dir / "main.xml", xmlScene(R"(<include filename="parts/light.xml"/>)"));
     EXPECT_EQ(SceneDocument::read(dir / "main.xml").parse().lights.size(), 1u);
 
-    test::writeFile(dir / "loop.xml", scene(R"(<include filename="loop.xml"/>)"));
+    test::writeFile(dir / "loop.xml", xmlScene(R"(<include filename="loop.xml"/>)"));
     EXPECT_THAT(test::errorMessage([&] { SceneDocument::read(dir / "loop.xml"); }),
                 HasSubstr(":11: <include filename=\"loop.xml\">: includes itself (a cycle)"));
-    test::writeFile(dir / "gone.xml", scene(R"(<include filename="nowhere.xml"/>)"));
+    test::writeFile(dir / "gone.xml", xmlScene(R"(<include filename="nowhere.xml"/>)"));
     EXPECT_THAT(test::errorMessage([&] { SceneDocument::read(dir / "gone.xml"); }),
                 HasSubstr("gone.xml:11: cannot open"));
 }
 
 TEST(MitsubaImport, MalformedOrUnsupportedInputIsOneErrorWithItsLine) {
-    EXPECT_THAT(errorOf("<scene version=\"3.0.0\">\n  <shape type=\"obj\">\n</scene>"),
+    EXPECT_THAT(xmlError("<scene version=\"3.0.0\">\n  <shape type=\"obj\">\n</scene>"),
                 HasSubstr("scene.xml:3: malformed XML"));
-    EXPECT_THAT(errorOf("<scene version=\"0.6.0\"/>"),
+    EXPECT_THAT(xmlError("<scene version=\"0.6.0\"/>"),
                 HasSubstr("scene.xml:1: <scene version=\"0.6.0\">: only scene versions 2.x and 3.x"));
-    EXPECT_THAT(errorOf(scene(R"(<medium type="homogeneous"/>)")),
+    EXPECT_THAT(xmlError(xmlScene(R"(<medium type="homogeneous"/>)")),
                 HasSubstr("scene.xml:11: <medium type=\"homogeneous\">: participating media are not supported"));
-    EXPECT_THAT(errorOf(scene(R"(<shape type="rectangle"><bsdf type="hair"/></shape>)")),
+    EXPECT_THAT(xmlError(xmlScene(R"(<shape type="rectangle"><bsdf type="hair"/></shape>)")),
                 HasSubstr("scene.xml:11: <bsdf type=\"hair\">: this BSDF is not supported yet"));
-    EXPECT_THAT(errorOf(scene(R"(<shape type="rectangle"><float name="sharpness" value="1"/></shape>)")),
+    EXPECT_THAT(xmlError(xmlScene(R"(<shape type="rectangle"><float name="sharpness" value="1"/></shape>)")),
                 HasSubstr("scene.xml:11: <shape type=\"rectangle\">: the parameter 'sharpness' is not supported"));
-    EXPECT_THAT(errorOf(scene(R"(<shape type="rectangle"><ref id="nothing"/></shape>)")),
+    EXPECT_THAT(xmlError(xmlScene(R"(<shape type="rectangle"><ref id="nothing"/></shape>)")),
                 HasSubstr("scene.xml:11: <ref id=\"nothing\">: no object with this id before it"));
-    EXPECT_THAT(errorOf(scene(R"(<teapot/>)")),
+    EXPECT_THAT(xmlError(xmlScene(R"(<teapot/>)")),
                 HasSubstr("scene.xml:11: <teapot>: not an element of Mitsuba 3's scene language"));
-    EXPECT_THAT(errorOf(scene(R"(<shape type="rectangle"><transform name="to_world"><rotate angle="10"/></transform></shape>)")),
+    EXPECT_THAT(xmlError(xmlScene(R"(<shape type="rectangle"><transform name="to_world"><rotate angle="10"/></transform></shape>)")),
                 HasSubstr("scene.xml:11: <rotate>: needs a non-zero axis"));
-    EXPECT_THAT(errorOf(scene(R"(<emitter type="point"><rgb name="intensity" value="1, two, 3"/></emitter>)")),
+    EXPECT_THAT(xmlError(xmlScene(R"(<emitter type="point"><rgb name="intensity" value="1, two, 3"/></emitter>)")),
                 HasSubstr("is not a list of numbers"));
 }
 
 TEST(MitsubaImport, CheckerboardsAreStrahlTexturedColours) {
-    const SceneDesc d = parse(scene(R"(<shape type="cube"><bsdf type="diffuse">
+    const SceneDesc d = parse(xmlScene(R"(<shape type="cube"><bsdf type="diffuse">
     <texture name="reflectance" type="checkerboard">
       <rgb name="color0" value="0.9"/><transform name="to_uv"><scale x="4" y="2"/></transform>
     </texture></bsdf></shape>)"));
@@ -515,7 +515,7 @@ TEST(MitsubaImport, CheckerboardsAreStrahlTexturedColours) {
     EXPECT_EQ(diffuse->color.checkerboard->color0, Color(0.9f));
     EXPECT_EQ(diffuse->color.checkerboard->color1, Color(0.2f));
     EXPECT_EQ(diffuse->color.checkerboard->scale, Vec2(4.0f, 2.0f));
-    EXPECT_THAT(errorOf(scene(R"(<shape type="cube"><bsdf type="diffuse">
+    EXPECT_THAT(xmlError(xmlScene(R"(<shape type="cube"><bsdf type="diffuse">
     <texture name="reflectance" type="checkerboard">
       <transform name="to_uv"><rotate z="1" angle="30"/></transform>
     </texture></bsdf></shape>)")),
@@ -553,23 +553,23 @@ std::string spectralRectangle(const std::string& reflectance, const std::string&
 
 TEST(MitsubaImport, SpectraBecomeRgbAsInMitsubasRgbVariants) {
     // A constant reflectance is that grey (D65 is a reflectance's white).
-    SceneDesc d = parse(scene(spectralRectangle("360:0.5, 830:0.5", "400:0, 500:8, 600:15.6, 700:18.4")));
+    SceneDesc d = parse(xmlScene(spectralRectangle("360:0.5, 830:0.5", "400:0, 500:8, 600:15.6, 700:18.4")));
     const Color grey = diffuseColour(d, 1);
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(grey[c], 0.5f, 1e-3f) << c;
     // Emitted light is integrated without D65: a constant 1 over the visible
     // range has luminance 1 and is the equal-energy white, (1.2048, 0.9483,
     // 0.9089) in linear sRGB, as a single value 1 gives it in an emitter.
-    d = parse(scene(spectralRectangle("0.5", "360:1, 830:1")));
+    d = parse(xmlScene(spectralRectangle("0.5", "360:1, 830:1")));
     const Color white = emissionOf(d);
     EXPECT_NEAR(luminance(white), 1.0f, 1e-3f);
-    d = parse(scene(spectralRectangle("0.5", "1")));
+    d = parse(xmlScene(spectralRectangle("0.5", "1")));
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(emissionOf(d)[c], white[c], 1e-3f) << c;
     EXPECT_NEAR(emissionOf(d).r, 1.2048f, 1e-4f);
     EXPECT_NEAR(emissionOf(d).b, 0.9089f, 1e-4f);
     EXPECT_EQ(diffuseColour(d, 1), Color(0.5f));  // a single value is grey outside emitters
     // Orange light (590-630 nm) is red and green without blue (clamped at 0);
     // a reflectance above 1 is clamped to 1, radiance is not.
-    d = parse(scene(spectralRectangle("400:3, 700:3", "590:0, 610:20, 630:0")));
+    d = parse(xmlScene(spectralRectangle("400:3, 700:3", "590:0, 610:20, 630:0")));
     const Color orange = emissionOf(d);
     EXPECT_GT(orange.r, orange.g);
     EXPECT_GT(orange.g, 0.0f);
@@ -577,11 +577,11 @@ TEST(MitsubaImport, SpectraBecomeRgbAsInMitsubasRgbVariants) {
     EXPECT_GT(orange.r, 1.0f);
     EXPECT_EQ(diffuseColour(d, 1), Color(1.0f));
 
-    EXPECT_THAT(errorOf(scene(spectralRectangle("500:0.5", "1"))),
+    EXPECT_THAT(xmlError(xmlScene(spectralRectangle("500:0.5", "1"))),
                 HasSubstr("scene.xml:11: <spectrum name=\"reflectance\">: needs at least two wavelengths"));
-    EXPECT_THAT(errorOf(scene(spectralRectangle("500:0.5, 400:0.5", "1"))),
+    EXPECT_THAT(xmlError(xmlScene(spectralRectangle("500:0.5, 400:0.5", "1"))),
                 HasSubstr("wavelengths must increase (400 after 500)"));
-    EXPECT_THAT(errorOf(scene(spectralRectangle("500:0.5, 600-0.5", "1"))),
+    EXPECT_THAT(xmlError(xmlScene(spectralRectangle("500:0.5, 600-0.5", "1"))),
                 HasSubstr("'600-0.5' is not a wavelength:value pair"));
 }
 
@@ -594,9 +594,10 @@ TEST(MitsubaImport, MeshFilesWithoutNormalsAreSmoothUnlessFaceNormals) {
                     "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv 0 1 0\n"
                     "f 2 1 5\nf 3 2 5\nf 4 3 5\nf 1 4 5\nf 1 2 3 4\n");
     const auto build = [&](const std::string& params) {
-        const SceneDesc d = parse(scene(R"(<shape type="obj"><string name="filename" value="pyramid.obj"/>)" +
-                                        params + "</shape>"),
-                                  {}, dir / "scene.xml");
+        const SceneDesc d =
+            parse(xmlScene(R"(<shape type="obj"><string name="filename" value="pyramid.obj"/>)" +
+                           params + "</shape>"),
+                  {}, dir / "scene.xml");
         return buildWorld(d, BuildOptions{});
     };
     const auto apexNormal = [](const World& w) {
@@ -615,7 +616,7 @@ TEST(MitsubaImport, BitmapsAreReadAtThePointWithTheirWrapModeAndToUv) {
     const fs::path dir = test::scratchDir("mitsuba-bitmap");
     test::writeFile(dir / "carrot.png", "not read while parsing");
     const auto bitmap = [&](const std::string& params) {
-        const SceneDesc d = parse(scene(R"(<shape type="cube"><bsdf type="diffuse">
+        const SceneDesc d = parse(xmlScene(R"(<shape type="cube"><bsdf type="diffuse">
           <texture name="reflectance" type="bitmap"><string name="filename" value="carrot.png"/>)" +
                                         params + "</texture></bsdf></shape>"),
                                   {}, dir / "scene.xml");
@@ -639,7 +640,7 @@ TEST(MitsubaImport, BitmapsAreReadAtThePointWithTheirWrapModeAndToUv) {
 TEST(MitsubaImport, ASpotFallsOffLinearlyInTheAngleAndProjectsItsBitmap) {
     const fs::path dir = test::scratchDir("mitsuba-spot");
     test::writeFile(dir / "slide.png", "not read while parsing");
-    const SceneDesc d = parse(scene(R"(<emitter type="spot">
+    const SceneDesc d = parse(xmlScene(R"(<emitter type="spot">
       <rgb name="intensity" value="5"/><float name="cutoff_angle" value="20"/>
       <transform name="to_world"><lookat origin="1, 2, 3" target="1, 2, 4" up="0, 1, 0"/></transform>
       <texture name="texture" type="bitmap"><string name="filename" value="slide.png"/></texture>
@@ -656,12 +657,12 @@ TEST(MitsubaImport, ASpotFallsOffLinearlyInTheAngleAndProjectsItsBitmap) {
     EXPECT_NEAR(spot.image->x.x, 1.0f, 1e-6f);
     EXPECT_NEAR(spot.image->y.y, 1.0f, 1e-6f);
     EXPECT_EQ(spot.image->texture.sampling.filter, TextureFilter::Bilinear);
-    EXPECT_THAT(errorOf(scene(R"(<emitter type="spot"><transform name="to_world"><scale x="2"/></transform></emitter>)")),
+    EXPECT_THAT(xmlError(xmlScene(R"(<emitter type="spot"><transform name="to_world"><scale x="2"/></transform></emitter>)")),
                 HasSubstr("a to_world that is not a rotation (times a uniform scale) is not supported"));
 }
 
 TEST(MitsubaImport, AProjectorKeepsItsFrameAndFovAndGivesPiTimesItsIrradiance) {
-    const SceneDesc d = parse(scene(R"(<emitter type="projector">
+    const SceneDesc d = parse(xmlScene(R"(<emitter type="projector">
       <rgb name="irradiance" value="0.5"/><float name="scale" value="2"/><float name="fov" value="60"/>
       <transform name="to_world"><lookat origin="0, 3, 0" target="0, 0, 0" up="0, 0, 1"/></transform>
     </emitter>)"));
@@ -673,7 +674,7 @@ TEST(MitsubaImport, AProjectorKeepsItsFrameAndFovAndGivesPiTimesItsIrradiance) {
     EXPECT_FLOAT_EQ(p.fovDegrees, 60.0f);
     EXPECT_EQ(p.fovAxis, ProjectorLight::FovAxis::X);
     // Without a fov: Mitsuba's 50 mm lens, along the diagonal.
-    const SceneDesc lens = parse(scene(R"(<emitter type="projector">
+    const SceneDesc lens = parse(xmlScene(R"(<emitter type="projector">
       <transform name="to_world"><lookat origin="0, 3, 0" target="0, 0, 0" up="0, 0, 1"/></transform>
     </emitter>)"));
     const auto& q = std::get<ProjectorLight>(lens.lights.at(0).light.kind);
@@ -685,7 +686,7 @@ TEST(MitsubaImport, AnEnvmapIsAnEnvironmentLightTurnedAQuarterWithRowsFromPoleTo
     const fs::path dir = test::scratchDir("mitsuba-envmap");
     test::writeFile(dir / "sky.exr", "not read while parsing");
     const auto light = [&](const std::string& transform) {
-        const SceneDesc d = parse(scene(R"(<emitter type="envmap"><string name="filename" value="sky.exr"/>
+        const SceneDesc d = parse(xmlScene(R"(<emitter type="envmap"><string name="filename" value="sky.exr"/>
           <float name="scale" value="2"/>)" + transform + "</emitter>"), {}, dir / "scene.xml");
         EXPECT_EQ(d.lights.size(), 1u);
         return std::get<EnvironmentLight>(d.lights.at(0).light.kind);
@@ -702,10 +703,12 @@ TEST(MitsubaImport, AnEnvmapIsAnEnvironmentLightTurnedAQuarterWithRowsFromPoleTo
     env = light(R"(<transform name="to_world"><rotate y="1" angle="90"/></transform>)");
     const Vec3 xInMap = env.worldToEnvironment * Vec3(1, 0, 0);
     EXPECT_NEAR(xInMap.x, 1.0f, 1e-6f);
-    EXPECT_THAT(errorOf(scene(R"(<emitter type="envmap"><string name="filename" value=")" +
-                              (dir / "sky.exr").string() +
-                              R"("/><transform name="to_world"><rotate x="1" angle="90"/></transform></emitter>)")),
-                HasSubstr("a to_world other than a rotation about +y is not supported yet"));
+    EXPECT_THAT(
+        xmlError(xmlScene(
+            R"(<emitter type="envmap"><string name="filename" value=")" +
+            (dir / "sky.exr").string() +
+            R"("/><transform name="to_world"><rotate x="1" angle="90"/></transform></emitter>)")),
+        HasSubstr("a to_world other than a rotation about +y is not supported yet"));
 }
 
 TEST(MitsubaImport, StrahlJsonScenesTakeNoDefines) {
@@ -725,7 +728,7 @@ TEST(MitsubaImport, CurveFilesAreRoundStrandsWhoseRadiiTheTransformKeeps) {
     const fs::path dir = test::scratchDir("mitsuba-curves");
     // Two strands, a blank line between them, radii per point.
     test::writeFile(dir / "hair.txt", "0 0 0 0.1\n0 0 1 0.1\n0 1 2 0.1\n0 1 3 0.05\n\n# next\n1 0 0 0.2\n1 0 1 0.2\n");
-    const SceneDesc d = parse(scene(R"(<shape type="bsplinecurve" id="fur">
+    const SceneDesc d = parse(xmlScene(R"(<shape type="bsplinecurve" id="fur">
     <string name="filename" value="hair.txt"/>
     <transform name="to_world"><scale value="2"/></transform>
   </shape>
@@ -747,8 +750,10 @@ TEST(MitsubaImport, CurveFilesAreRoundStrandsWhoseRadiiTheTransformKeeps) {
     // Points doubled, radii as written (Mitsuba does not scale them).
     EXPECT_EQ(curves->desc().points[3], Vec4(0, 2, 6, 0.05f));
     EXPECT_EQ(world.shapes[2].user->primitiveCount(), 3u);
-    EXPECT_THAT(errorOf(scene(R"(<shape type="linearcurve"><string name="filename" value="x.txt"/>
-      <boolean name="flip_normals" value="true"/></shape>)")), HasSubstr("flip_normals"));
+    EXPECT_THAT(
+        xmlError(xmlScene(R"(<shape type="linearcurve"><string name="filename" value="x.txt"/>
+      <boolean name="flip_normals" value="true"/></shape>)")),
+        HasSubstr("flip_normals"));
 }
 
 }  // namespace

@@ -14,7 +14,7 @@
 namespace strahl {
 namespace {
 
-const char* kScene = R"({
+const char* kMotionScene = R"({
   "camera": {"eye": [0, 0, 6], "shutter": [0.25, 0.75]},
   "groups": [
     {"name": "ball", "shapes": [{"type": "implicit", "surface": {"type": "sphere", "radius": 0.5}}]},
@@ -29,7 +29,8 @@ const char* kScene = R"({
 })";
 
 TEST(MotionScene, KeyframesAndShutterReachTheWorldAndTheCamera) {
-    const SceneDesc desc = parseSceneText(kScene, test::scratchDir("motion-scene") / "scene.json");
+    const SceneDesc desc =
+        parseSceneText(kMotionScene, test::scratchDir("motion-scene") / "scene.json");
     ASSERT_EQ(desc.shapes[0].motion.size(), 3u);
     EXPECT_FLOAT_EQ(desc.camera.shutter.open, 0.25f);
     EXPECT_FLOAT_EQ(desc.camera.shutter.close, 0.75f);

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "geometry/ray_probes.h"
+#include "scene_test_helpers.h"
 #include "strahl/core/ray.h"
 #include "strahl/geometry/parametric_shape.h"
 #include "strahl/scene/scene_builder.h"
@@ -18,26 +19,25 @@ namespace strahl {
 namespace {
 
 using test::contains;
-
-std::string sceneWith(const std::string& shape) { return R"({"shapes": [)" + shape + "]}"; }
+using test::sceneWith;
 
 std::string parametric(const std::string& surface, const std::string& extra = "") {
     return R"({"type": "parametric", "surface": )" + surface + (extra.empty() ? "" : ", " + extra) + "}";
 }
 
-SceneDesc parseIn(const std::filesystem::path& file, const std::string& text) {
+SceneDesc parseAs(const std::filesystem::path& file, const std::string& text) {
     return parseSceneText(text, file);
 }
 
-SceneDesc parse(const std::string& text) { return parseIn(test::sourceDir() / "scenes" / "scene.json", text); }
+SceneDesc parseInScenes(const std::string& text) { return parseAs(test::sourceDir() / "scenes" / "scene.json", text); }
 
 // The error of parsing the scene or, for files the surface names (read by
 // the builder), of building it.
-std::string errorOf(const std::string& surface, const std::string& extra = "") {
+std::string parametricError(const std::string& surface, const std::string& extra = "") {
     return test::errorMessage([&] {
         BuildOptions naive;
         naive.accel = AccelKind::Naive;
-        buildWorld(parse(sceneWith(parametric(surface, extra))), naive);
+        buildWorld(parseInScenes(sceneWith(parametric(surface, extra))), naive);
     });
 }
 
@@ -60,7 +60,7 @@ const char* kSurfaces[] = {
 TEST(ParametricScene, EverySurfaceBuildsInBothModes) {
     for (const char* surface : kSurfaces) {
         for (const std::string mode : {"tessellated", "direct"}) {
-            const SceneDesc desc = parse(sceneWith(parametric(surface, R"("mode": ")" + mode + "\"")));
+            const SceneDesc desc = parseInScenes(sceneWith(parametric(surface, R"("mode": ")" + mode + "\"")));
             ASSERT_EQ(desc.shapes.size(), 1u);
             EXPECT_EQ(desc.shapes[0].kind, ShapeKind::Parametric);
             const World world = buildWorld(desc, BuildOptions{});
@@ -81,7 +81,7 @@ TEST(ParametricScene, EverySurfaceBuildsInBothModes) {
 TEST(ParametricScene, TessellationSettingsReachTheMesh) {
     const char* sphere = R"({"type": "sphere", "radius": 1})";
     auto triangles = [&](const std::string& tessellation) {
-        const SceneDesc desc = parse(sceneWith(parametric(sphere, R"("tessellation": )" + tessellation)));
+        const SceneDesc desc = parseInScenes(sceneWith(parametric(sphere, R"("tessellation": )" + tessellation)));
         return buildWorld(desc, BuildOptions{}).shapes[0].mesh.triangleCount();
     };
     // Uniform: 8 x 16 cells, two triangles each, minus one per pole cell.
@@ -91,14 +91,14 @@ TEST(ParametricScene, TessellationSettingsReachTheMesh) {
     // Edge length on screen: one pixel gives more than eight.
     EXPECT_GT(triangles(R"({"max_edge_pixels": 1})"), triangles(R"({"max_edge_pixels": 8})"));
     const SceneDesc interpolated =
-        parse(sceneWith(parametric(sphere, R"("tessellation": {"segments": 8, "normals": "interpolated"})")));
+        parseInScenes(sceneWith(parametric(sphere, R"("tessellation": {"segments": 8, "normals": "interpolated"})")));
     const World world = buildWorld(interpolated, BuildOptions{});
     EXPECT_EQ(world.shapes[0].tessellated->normals(), ParametricNormals::Interpolated);
     EXPECT_FALSE(world.shapes[0].mesh.normals.empty());
 }
 
 TEST(ParametricScene, DomainsTakeExactConstantFormulas) {
-    const SceneDesc desc = parse(sceneWith(parametric(
+    const SceneDesc desc = parseInScenes(sceneWith(parametric(
         R"J({"type": "formula", "x": "cos(u)", "y": "sin(u)", "z": "v", "u": [0, "2*pi"], "v": [-1, 1],
             "periodic_u": true})J")));
     const ParamDomain& d = desc.shapes[0].parametric.surface->domain();
@@ -108,38 +108,45 @@ TEST(ParametricScene, DomainsTakeExactConstantFormulas) {
 }
 
 TEST(ParametricScene, BadSurfacesNameTheirPlace) {
-    EXPECT_TRUE(contains(errorOf(R"({"type": "sphere", "radius": -1})"),
+    EXPECT_TRUE(contains(parametricError(R"({"type": "sphere", "radius": -1})"),
                          "scene.json: /shapes/0/surface: radius must be a positive finite number"));
-    EXPECT_TRUE(contains(errorOf(R"({"type": "klein"})"), "/shapes/0/surface/type: must be one of"));
-    EXPECT_TRUE(contains(errorOf(R"({"type": "torus", "major_radius": 1, "minor_radius": 2})"),
-                         "/shapes/0/surface: minor_radius"));
+    EXPECT_TRUE(contains(parametricError(R"({"type": "klein"})"), "/shapes/0/surface/type: must be one of"));
+    EXPECT_TRUE(
+        contains(parametricError(R"({"type": "torus", "major_radius": 1, "minor_radius": 2})"),
+                 "/shapes/0/surface: minor_radius"));
     EXPECT_TRUE(contains(
-        errorOf(R"({"type": "formula", "x": "u +", "y": "v", "z": "0", "u": [0, 1], "v": [0, 1]})"),
+        parametricError(
+            R"({"type": "formula", "x": "u +", "y": "v", "z": "0", "u": [0, 1], "v": [0, 1]})"),
         "/shapes/0/surface: x: column"));
     EXPECT_TRUE(contains(
-        errorOf(R"({"type": "formula", "x": "1/u", "y": "v", "z": "0", "u": [0, 1], "v": [0, 1]})"),
+        parametricError(
+            R"({"type": "formula", "x": "1/u", "y": "v", "z": "0", "u": [0, 1], "v": [0, 1]})"),
         "/shapes/0/surface: formula"));
     EXPECT_TRUE(contains(
-        errorOf(R"({"type": "formula", "x": "u", "y": "v", "z": "0", "u": [1, 0], "v": [0, 1]})"),
+        parametricError(
+            R"({"type": "formula", "x": "u", "y": "v", "z": "0", "u": [1, 0], "v": [0, 1]})"),
         "/shapes/0/surface/u: the domain is empty or inverted"));
     EXPECT_TRUE(contains(
-        errorOf(R"({"type": "formula", "x": "u", "y": "v", "z": "0", "u": [0, "2*pie"], "v": [0, 1]})"),
+        parametricError(R"({"type": "formula", "x": "u", "y": "v", "z": "0", "u": [0, "2*pie"], "v": [0, 1]})"),
         "/shapes/0/surface/u/1"));
-    EXPECT_TRUE(contains(errorOf(R"({"type": "revolution", "profile": [[-1, 0], [1, 1]]})"),
+    EXPECT_TRUE(contains(parametricError(R"({"type": "revolution", "profile": [[-1, 0], [1, 1]]})"),
                          "/shapes/0/surface"));
-    EXPECT_TRUE(contains(errorOf(R"({"type": "bezier", "file": "data/missing.bpt"})"),
+    EXPECT_TRUE(contains(parametricError(R"({"type": "bezier", "file": "data/missing.bpt"})"),
                          "/shapes/0/surface/file"));
-    EXPECT_TRUE(contains(errorOf(R"({"type": "heightfield", "image": "data/teapot.bpt"})"),
+    EXPECT_TRUE(contains(parametricError(R"({"type": "heightfield", "image": "data/teapot.bpt"})"),
                          "/shapes/0/surface/image"));
-    EXPECT_TRUE(contains(errorOf(R"({"type": "bilinear", "positions": [[0, 0, 0], [1, 0, 0], [1, 1, 0]],
+    EXPECT_TRUE(contains(
+        parametricError(R"({"type": "bilinear", "positions": [[0, 0, 0], [1, 0, 0], [1, 1, 0]],
                                     "patches": [0, 1, 2, 3]})"),
-                         "/shapes/0/surface/patches/3: index 3 is beyond the 3 positions"));
-    EXPECT_TRUE(contains(errorOf(R"({"type": "bilinear", "positions": [[0, 0, 0], [1, 0, 0], [1, 1, 0]],
+        "/shapes/0/surface/patches/3: index 3 is beyond the 3 positions"));
+    EXPECT_TRUE(contains(
+        parametricError(R"({"type": "bilinear", "positions": [[0, 0, 0], [1, 0, 0], [1, 1, 0]],
                                     "patches": [0, 1, 2]})"),
-                         "/shapes/0/surface/patches: expected four corner indices per patch, got 3 indices"));
-    EXPECT_TRUE(contains(errorOf(R"({"type": "bilinear", "positions": [[0, 0], [1, 0, 0], [1, 1, 0]],
+        "/shapes/0/surface/patches: expected four corner indices per patch, got 3 indices"));
+    EXPECT_TRUE(contains(
+        parametricError(R"({"type": "bilinear", "positions": [[0, 0], [1, 0, 0], [1, 1, 0]],
                                     "patches": [0, 1, 2, 0]})"),
-                         "/shapes/0/surface/positions/0: expected [x, y, z]"));
+        "/shapes/0/surface/positions/0: expected [x, y, z]"));
 }
 
 TEST(ParametricScene, FlipNormalsTurnsTheFrontAroundInBothModes) {
@@ -147,7 +154,7 @@ TEST(ParametricScene, FlipNormalsTurnsTheFrontAroundInBothModes) {
     // Tessellated: the triangles' winding and the exact normals both turn.
     const auto tessellatedNormal = [&](bool flip) {
         const SceneDesc desc =
-            parse(sceneWith(parametric(sphere, flip ? R"("flip_normals": true)" : R"("flip_normals": false)")));
+            parseInScenes(sceneWith(parametric(sphere, flip ? R"("flip_normals": true)" : R"("flip_normals": false)")));
         const World world = buildWorld(desc, BuildOptions{});
         const SceneShape& shape = world.shapes[0];
         const SurfaceInteraction si = shape.tessellated->interaction(shape.mesh, 0, 0.3f, 0.3f);
@@ -158,7 +165,7 @@ TEST(ParametricScene, FlipNormalsTurnsTheFrontAroundInBothModes) {
     EXPECT_LT(tessellatedNormal(true), 0.0f);
     // Direct: the reported geometric normal turns.
     const auto directNormal = [&](bool flip) {
-        const SceneDesc desc = parse(sceneWith(parametric(
+        const SceneDesc desc = parseInScenes(sceneWith(parametric(
             sphere, std::string(R"("mode": "direct", "flip_normals": )") + (flip ? "true" : "false"))));
         const World world = buildWorld(desc, BuildOptions{});
         const UserShape& user = *world.shapes[0].user;
@@ -177,7 +184,7 @@ TEST(ParametricScene, MalformedPatchFilesNameFileAndLine) {
     const auto dir = test::scratchDir("bad-patches");
     test::writeFile(dir / "bad.bpt", "1\n3 3\n0 0 0\n1 0 0\n");  // truncated after 2 of 16 points
     const std::string message = test::errorMessage([&] {
-        buildWorld(parseIn(dir / "scene.json",
+        buildWorld(parseAs(dir / "scene.json",
                            sceneWith(parametric(R"({"type": "bezier", "file": "bad.bpt"})"))),
                    BuildOptions{});
     });
@@ -187,25 +194,28 @@ TEST(ParametricScene, MalformedPatchFilesNameFileAndLine) {
 
 TEST(ParametricScene, BadModeSettingsAreNamed) {
     const char* sphere = R"({"type": "sphere"})";
-    EXPECT_TRUE(contains(errorOf(sphere, R"("mode": "exact")"), "/shapes/0/mode: must be one of tessellated, direct"));
-    EXPECT_TRUE(contains(errorOf(sphere, R"("mode": "direct", "tessellation": {"segments": 4})"),
-                         "/shapes/0/tessellation: only for \"mode\": \"tessellated\""));
-    EXPECT_TRUE(contains(errorOf(sphere, R"("direct": {"tolerance": 1e-6})"),
+    EXPECT_TRUE(contains(parametricError(sphere, R"("mode": "exact")"), "/shapes/0/mode: must be one of tessellated, direct"));
+    EXPECT_TRUE(
+        contains(parametricError(sphere, R"("mode": "direct", "tessellation": {"segments": 4})"),
+                 "/shapes/0/tessellation: only for \"mode\": \"tessellated\""));
+    EXPECT_TRUE(contains(parametricError(sphere, R"("direct": {"tolerance": 1e-6})"),
                          "/shapes/0/direct: only for \"mode\": \"direct\""));
-    EXPECT_TRUE(contains(errorOf(sphere, R"("tessellation": {"segments": 0})"), "/shapes/0/tessellation/segments"));
-    EXPECT_TRUE(contains(errorOf(sphere, R"("tessellation": {"segments": 100000})"),
+    EXPECT_TRUE(contains(parametricError(sphere, R"("tessellation": {"segments": 0})"), "/shapes/0/tessellation/segments"));
+    EXPECT_TRUE(contains(parametricError(sphere, R"("tessellation": {"segments": 100000})"),
                          "/shapes/0/tessellation/segments"));
-    EXPECT_TRUE(contains(errorOf(sphere, R"("tessellation": {"max_error": -1})"),
+    EXPECT_TRUE(contains(parametricError(sphere, R"("tessellation": {"max_error": -1})"),
                          "/shapes/0/tessellation/max_error: must be a positive number"));
-    EXPECT_TRUE(contains(errorOf(sphere, R"("tessellation": {"normals": "smooth"})"),
+    EXPECT_TRUE(contains(parametricError(sphere, R"("tessellation": {"normals": "smooth"})"),
                          "/shapes/0/tessellation/normals"));
-    EXPECT_TRUE(contains(errorOf(sphere, R"("mode": "direct", "direct": {"tolerance": 0.5})"),
-                         "/shapes/0/direct/tolerance: must lie in"));
-    EXPECT_TRUE(contains(errorOf(sphere, R"("box": [[0,0,0],[1,1,1]])"), "unknown key 'box'"));
+    EXPECT_TRUE(
+        contains(parametricError(sphere, R"("mode": "direct", "direct": {"tolerance": 0.5})"),
+                 "/shapes/0/direct/tolerance: must lie in"));
+    EXPECT_TRUE(
+        contains(parametricError(sphere, R"("box": [[0,0,0],[1,1,1]])"), "unknown key 'box'"));
 }
 
 TEST(ParametricScene, SingularTransformIsRejected) {
-    EXPECT_TRUE(contains(errorOf(R"({"type": "sphere"})", R"("mode": "direct", "transform": [{"scale": [1, 0, 1]}])"),
+    EXPECT_TRUE(contains(parametricError(R"({"type": "sphere"})", R"("mode": "direct", "transform": [{"scale": [1, 0, 1]}])"),
                          "/shapes/0/transform/0/scale: must be non-zero"));
 }
 

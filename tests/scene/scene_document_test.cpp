@@ -26,7 +26,7 @@ const std::string kScene = R"({
   "shapes": [ { "type": "mesh", "positions": [[-1,-1,0],[1,-1,0],[1,1,0]], "indices": [0,1,2] } ]
 })";
 
-SceneDocument document(const std::string& text = kScene) {
+SceneDocument jsonDocument(const std::string& text = kScene) {
     return SceneDocument::fromText(text, "scene.json");
 }
 
@@ -50,7 +50,7 @@ TEST(ScenePatch, MalformedSetArgumentsAreErrors) {
 }
 
 TEST(ScenePatch, PatchesChangeWhatIsParsedAndCreateMissingObjects) {
-    SceneDocument doc = document();
+    SceneDocument doc = jsonDocument();
     doc.apply(parseSetArgument("/film/width=32"));
     doc.apply(parseSetArgument("/render/spp=7"));  // no "render" object in the file
     doc.apply(parseSetArgument("/render/integrator=path"));
@@ -65,14 +65,14 @@ TEST(ScenePatch, PatchesChangeWhatIsParsedAndCreateMissingObjects) {
 }
 
 TEST(ScenePatch, ALaterPatchWins) {
-    SceneDocument doc = document();
+    SceneDocument doc = jsonDocument();
     doc.apply({"/render/spp", "4", "--spp 4"});
     doc.apply(parseSetArgument("/render/spp=9"));
     EXPECT_EQ(doc.parse().render.spp, 9);
 }
 
 TEST(ScenePatch, PatchesThatCannotApplyNameTheirOrigin) {
-    SceneDocument doc = document();
+    SceneDocument doc = jsonDocument();
     EXPECT_EQ(test::errorMessage([&] { doc.apply(parseSetArgument("/film/width/x=1")); }),
               "scene.json: /film/width is a number, not an object (--set /film/width/x=1)");
     EXPECT_EQ(test::errorMessage([&] { doc.apply(parseSetArgument("/shapes/3/type=mesh")); }),
@@ -89,19 +89,19 @@ TEST(ScenePatch, PatchesThatCannotApplyNameTheirOrigin) {
 }
 
 TEST(ScenePatch, AParseErrorAtAPatchedPlaceNamesThePatch) {
-    SceneDocument doc = document();
+    SceneDocument doc = jsonDocument();
     doc.apply({"/film/width", "30000", "--width 30000"});
     doc.apply({"/film/height", "30000", "--height 30000"});
     doc.apply(parseSetArgument("/render/seed=3"));
     EXPECT_EQ(test::errorMessage([&] { doc.parse(); }),
               "scene.json: /film: width x height = 900000000 pixels, more than the limit of "
               "268435456 (2^28) (set by --width 30000, --height 30000)");
-    SceneDocument typo = document();
+    SceneDocument typo = jsonDocument();
     typo.apply(parseSetArgument("/render/spq=4"));
     EXPECT_NE(test::errorMessage([&] { typo.parse(); }).find("(set by --set /render/spq=4)"),
               std::string::npos);
     // An error elsewhere is left as it is.
-    SceneDocument other = document(R"({"film": {"width": 0}, "shapes": []})");
+    SceneDocument other = jsonDocument(R"({"film": {"width": 0}, "shapes": []})");
     other.apply(parseSetArgument("/render/spp=2"));
     EXPECT_EQ(test::errorMessage([&] { other.parse(); }),
               "scene.json: /film/width: must be between 1 and 32768, got 0");
@@ -121,21 +121,21 @@ TEST(SceneFormats, JsonIsTheDefaultForAnyExtension) {
 }
 
 TEST(SceneHash, IgnoresCommentsAndSpacingButNotValues) {
-    const uint64_t h = document().hash();
+    const uint64_t h = jsonDocument().hash();
     EXPECT_EQ(SceneDocument::fromText(json::parse(kScene, nullptr, true, true).dump(4), "x.json")
                   .hash(),
               h);
-    SceneDocument doc = document();
+    SceneDocument doc = jsonDocument();
     doc.apply(parseSetArgument("/film/width=17"));
     EXPECT_NE(doc.hash(), h);
     // Leaving out the value two documents differ in gives the same hash (the
     // parts of a split render differ only in their samples per pixel).
-    SceneDocument part1 = document(), part2 = document();
+    SceneDocument part1 = jsonDocument(), part2 = jsonDocument();
     part1.apply(parseSetArgument("/render/spp=17"));
     part2.apply(parseSetArgument("/render/spp=5"));
     EXPECT_NE(part1.hash(), part2.hash());
     EXPECT_EQ(part1.hash({"/render/spp"}), part2.hash({"/render/spp"}));
-    EXPECT_EQ(document().hash({"/no/such/key"}), h);
+    EXPECT_EQ(jsonDocument().hash({"/no/such/key"}), h);
 }
 
 // Every leaf of the document: its pointer and a different value of the same type.

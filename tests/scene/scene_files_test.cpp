@@ -10,6 +10,7 @@
 #include <string>
 
 #include "meshio/warning_capture.h"
+#include "scene_test_helpers.h"
 #include "strahl/scene/scene_builder.h"
 #include "strahl/scene/scene_desc.h"
 #include "strahl/scene/scene_document.h"
@@ -19,13 +20,8 @@ namespace strahl {
 namespace {
 
 namespace fs = std::filesystem;
+using test::naive;
 using testing::HasSubstr;
-
-BuildOptions naive() {
-    BuildOptions options;
-    options.accel = AccelKind::Naive;
-    return options;
-}
 
 // One triangle, one perspective camera looking down -z from (0, 0, 3), and an
 // extension the loader ignores with a warning: one warning per read.

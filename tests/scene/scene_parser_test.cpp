@@ -8,6 +8,7 @@
 #include <limits>
 #include <string>
 
+#include "scene_test_helpers.h"
 #include "strahl/core/error.h"
 #include "strahl/scene/scene_desc.h"
 #include "test_support.h"
@@ -16,27 +17,15 @@ namespace strahl {
 namespace {
 
 namespace fs = std::filesystem;
+using test::errorWith;
+using test::expectNear;
+using test::kTriangleShapes;
+using test::parseError;
+using test::parseJson;
 
-// A scene with one inline triangle, for tests about the other sections.
-const std::string kTriangle =
-    R"("shapes": [{"type": "mesh", "positions": [[0,0,0],[1,0,0],[0,1,0]], "indices": [0,1,2]}])";
-
-SceneDesc parse(const std::string& text) {
-    return parseSceneText(text, "scene.json");
-}
-
-// A scene made of kTriangle plus `sections` (comma-separated top-level members).
+// A scene made of kTriangleShapes plus `sections` (comma-separated top-level members).
 SceneDesc parseWith(const std::string& sections) {
-    return parse("{" + sections + ", " + kTriangle + "}");
-}
-
-// The message of the strahl::Error that parsing `text` throws.
-std::string errorOf(const std::string& text) {
-    return test::errorMessage([&] { parse(text); });
-}
-
-std::string errorWith(const std::string& sections) {
-    return errorOf("{" + sections + ", " + kTriangle + "}");
+    return parseJson("{" + sections + ", " + kTriangleShapes + "}");
 }
 
 // A shape list holding one inline triangle with extra members `extra`.
@@ -48,12 +37,6 @@ std::string triangleWith(const std::string& extra) {
 
 using test::writeFile;
 
-void expectNear(const Vec3& actual, const Vec3& expected) {
-    EXPECT_NEAR(actual.x, expected.x, 1e-5f);
-    EXPECT_NEAR(actual.y, expected.y, 1e-5f);
-    EXPECT_NEAR(actual.z, expected.z, 1e-5f);
-}
-
 Vec3 apply(const Mat4& m, const Vec3& p) {
     return Vec3(m * Vec4(p, 1.0f));
 }
@@ -61,7 +44,7 @@ Vec3 apply(const Mat4& m, const Vec3& p) {
 // --- values --------------------------------------------------------------------
 
 TEST(SceneParser, DefaultsForAMinimalScene) {
-    const SceneDesc s = parse("{" + kTriangle + "}");
+    const SceneDesc s = parseJson("{" + kTriangleShapes + "}");
     EXPECT_EQ(s.camera.projection, Projection::Perspective);
     EXPECT_EQ(s.camera.eye, Vec3(0.0f, 0.0f, 5.0f));
     ASSERT_TRUE(s.camera.lookAt.has_value());
@@ -175,7 +158,7 @@ TEST(SceneParser, FilmRenderAndBackgroundKeys) {
 }
 
 TEST(SceneParser, MaterialsAndShapeReferences) {
-    const SceneDesc s = parse(
+    const SceneDesc s = parseJson(
         R"({"materials": [{"name": "red", "type": "diffuse", "color": [0.63, 0.06, 0.04]},
                           {"name": "lamp", "color": 0, "emission": [10, 8, 6]}],
             "shapes": [{"type": "mesh", "name": "tri", "material": "lamp",
@@ -204,8 +187,8 @@ TEST(SceneParser, MaterialsAndShapeReferences) {
 }
 
 TEST(SceneParser, InlineMeshWithNormalsAndUvs) {
-    const SceneDesc s =
-        parse(triangleWith(R"("normals": [[0,0,1],[0,0,1],[0,0,1]], "uvs": [[0,0],[1,0],[0,1]])"));
+    const SceneDesc s = parseJson(
+        triangleWith(R"("normals": [[0,0,1],[0,0,1],[0,0,1]], "uvs": [[0,0],[1,0],[0,1]])"));
     const TriangleMesh& mesh = s.shapes[0].inlineMesh;
     ASSERT_EQ(mesh.normals.size(), 3u);
     EXPECT_EQ(mesh.normals[2], Vec3(0.0f, 0.0f, 1.0f));
@@ -248,13 +231,13 @@ TEST(SceneParser, DuplicateKeysKeepTheLastValue) {
 }
 
 TEST(SceneParser, CommentsAreAccepted) {
-    const SceneDesc s = parse(R"(// a scene
+    const SceneDesc s = parseJson(R"(// a scene
 {
   /* the film,
      in pixels */
   "film": {"width": 8, // eight
            "height": /* inline */ 4},
-  )" + kTriangle + R"(  // one triangle
+  )" + kTriangleShapes + R"(  // one triangle
 }
 // trailing comment)");
     EXPECT_EQ(s.film.width, 8);
@@ -267,13 +250,13 @@ TEST(SceneParser, CommentsAreAccepted) {
 TEST(SceneParser, TransformOperationsApplyInTheOrderListed) {
     // (1,0,0) scaled by 2 -> (2,0,0), rotated 90 degrees about +z -> (0,2,0),
     // translated by (1,0,0) -> (1,2,0).
-    const SceneDesc s = parse(triangleWith(
+    const SceneDesc s = parseJson(triangleWith(
         R"("transform": [{"scale": 2}, {"rotate": {"axis": [0, 0, 3], "angle": 90}},
                          {"translate": [1, 0, 0]}])"));
     expectNear(apply(s.shapes[0].transform, Vec3(1.0f, 0.0f, 0.0f)), Vec3(1.0f, 2.0f, 0.0f));
 
     // Reversed: translate -> (2,0,0), rotate -> (0,2,0), scale -> (0,4,0).
-    const SceneDesc r = parse(triangleWith(
+    const SceneDesc r = parseJson(triangleWith(
         R"("transform": [{"translate": [1, 0, 0]}, {"rotate": {"axis": [0, 0, 1], "angle": 90}},
                          {"scale": 2}])"));
     expectNear(apply(r.shapes[0].transform, Vec3(1.0f, 0.0f, 0.0f)), Vec3(0.0f, 4.0f, 0.0f));
@@ -281,17 +264,17 @@ TEST(SceneParser, TransformOperationsApplyInTheOrderListed) {
 
 TEST(SceneParser, RotationFollowsTheRightHandRule) {
     const SceneDesc s =
-        parse(triangleWith(R"("transform": [{"rotate": {"axis": [1, 0, 0], "angle": 90}}])"));
+        parseJson(triangleWith(R"("transform": [{"rotate": {"axis": [1, 0, 0], "angle": 90}}])"));
     // About +x, +y turns towards +z.
     expectNear(apply(s.shapes[0].transform, Vec3(0.0f, 1.0f, 0.0f)), Vec3(0.0f, 0.0f, 1.0f));
 }
 
 TEST(SceneParser, NonUniformScaleAndRowMajorMatrix) {
-    const SceneDesc scaled = parse(triangleWith(R"("transform": [{"scale": [1, -2, 3]}])"));
+    const SceneDesc scaled = parseJson(triangleWith(R"("transform": [{"scale": [1, -2, 3]}])"));
     expectNear(apply(scaled.shapes[0].transform, Vec3(1.0f)), Vec3(1.0f, -2.0f, 3.0f));
 
     // Row-major: the translation is the last column as written.
-    const SceneDesc m = parse(triangleWith(
+    const SceneDesc m = parseJson(triangleWith(
         R"("transform": [{"matrix": [1, 2, 0, 5,  0, 1, 0, 6,  0, 0, 1, 7,  0, 0, 0, 1]}])"));
     const Mat4& t = m.shapes[0].transform;
     EXPECT_EQ(t[3], Vec4(5.0f, 6.0f, 7.0f, 1.0f));
@@ -379,32 +362,32 @@ TEST(SceneParser, UnreadableSceneFiles) {
 // --- syntax errors -------------------------------------------------------------
 
 TEST(SceneParser, SyntaxErrorsGiveLineAndColumn) {
-    EXPECT_EQ(errorOf("{\n  \"film\": {\"width\": 10,}\n}"),
+    EXPECT_EQ(parseError("{\n  \"film\": {\"width\": 10,}\n}"),
               "scene.json:2:24: syntax error: unexpected '}'; expected string literal");
-    EXPECT_EQ(errorOf("{\"film\" 1}"),
+    EXPECT_EQ(parseError("{\"film\" 1}"),
               "scene.json:1:9: syntax error: unexpected number literal; expected ':'");
-    EXPECT_EQ(errorOf("// only a comment\n/* and\n   another */ {\"film\": tru}"),
+    EXPECT_EQ(parseError("// only a comment\n/* and\n   another */ {\"film\": tru}"),
               "scene.json:3:27: syntax error: invalid literal");
-    EXPECT_EQ(errorOf("{\n/* never closed\n"),
+    EXPECT_EQ(parseError("{\n/* never closed\n"),
               "scene.json:3:1: syntax error: invalid comment; missing closing '*/'; expected "
               "string literal");
-    EXPECT_EQ(errorOf(""),
+    EXPECT_EQ(parseError(""),
               "scene.json:1:1: syntax error: unexpected end of input; expected '[', '{', or a "
               "literal");
-    EXPECT_EQ(errorOf("{} {}"),
+    EXPECT_EQ(parseError("{} {}"),
               "scene.json:1:4: syntax error: unexpected '{'; expected end of input");
 }
 
 TEST(SceneParser, NumberOverflowIsASyntaxErrorAtTheNumber) {
-    EXPECT_EQ(errorOf("{\"background\":\n  1e400}"),
+    EXPECT_EQ(parseError("{\"background\":\n  1e400}"),
               "scene.json:2:3: syntax error: number overflow parsing '1e400'");
 }
 
 // --- content errors ------------------------------------------------------------
 
 TEST(SceneParser, TopLevelMustBeAnObject) {
-    EXPECT_EQ(errorOf("[1, 2]"), "scene.json: top level: expected an object, got array");
-    EXPECT_EQ(errorOf("{\"camra\": {}}"),
+    EXPECT_EQ(parseError("[1, 2]"), "scene.json: top level: expected an object, got array");
+    EXPECT_EQ(parseError("{\"camra\": {}}"),
               "scene.json: top level: unknown key 'camra' (allowed: camera, film, render, "
               "background, materials, groups, shapes, lights)");
 }
@@ -429,7 +412,7 @@ TEST(SceneParser, UnknownKeysNameTheObjectAndTheAllowedKeys) {
               "scene.json: /materials/0: unknown key 'color' for a conductor material (allowed: "
               "name, type, emission, two_sided, normal_map, bump_map, mapping, opacity, opacity_cutoff, metal, eta, k, "
               "roughness, roughness_u, roughness_v, distribution, masking)");
-    EXPECT_EQ(errorOf(triangleWith(R"("faces": [0, 1, 2])")),
+    EXPECT_EQ(parseError(triangleWith(R"("faces": [0, 1, 2])")),
               "scene.json: /shapes/0: unknown key 'faces' (allowed: type, name, file, positions, "
               "indices, normals, uvs, material, transform, motion, flip_normals, shape_index, subdivision, deform)");
     EXPECT_EQ(
@@ -448,7 +431,7 @@ TEST(SceneParser, UnknownKeysNameTheObjectAndTheAllowedKeys) {
         "scene.json: /lights/0: unknown key 'intensity' (allowed: type, direction, "
         "irradiance, angular_diameter)");
     EXPECT_EQ(
-        errorOf(triangleWith(R"("transform": [{"rotate": {"axis": [0,1,0], "degrees": 3}}])")),
+        parseError(triangleWith(R"("transform": [{"rotate": {"axis": [0,1,0], "degrees": 3}}])")),
         "scene.json: /shapes/0/transform/0/rotate: unknown key 'degrees' (allowed: axis, "
         "angle)");
 }
@@ -475,7 +458,7 @@ TEST(SceneParser, WrongTypesNameTheValue) {
               "scene.json: /background: expected a number or an array of 3 numbers, got string");
     EXPECT_EQ(errorWith(R"("render": {"seed": 1.5})"),
               "scene.json: /render/seed: expected an integer, got number 1.5");
-    EXPECT_EQ(errorOf(triangleWith(R"("uvs": [[0,0],[1,0],[0,1,2]])")),
+    EXPECT_EQ(parseError(triangleWith(R"("uvs": [[0,0],[1,0],[0,1,2]])")),
               "scene.json: /shapes/0/uvs/2: expected an array of 2 numbers, got an array of 3");
 }
 
@@ -566,53 +549,56 @@ TEST(SceneParser, MaterialErrors) {
         "scene.json: /materials/0/name: 'default' is reserved for the built-in grey material");
     EXPECT_EQ(errorWith(R"("materials": [{"name": "a"}, {"name": "b"}, {"name": "a"}])"),
               "scene.json: /materials/2/name: material 'a' is already defined at /materials/0");
-    EXPECT_EQ(errorOf(R"({"materials": [{"name": "red"}, {"name": "green"}],)" +
-                      triangleWith(R"("material": "blue")").substr(1)),
+    EXPECT_EQ(parseError(R"({"materials": [{"name": "red"}, {"name": "green"}],)" +
+                         triangleWith(R"("material": "blue")").substr(1)),
               "scene.json: /shapes/0/material: unknown material 'blue' (defined: red, green, "
               "default)");
 }
 
 TEST(SceneParser, ShapeErrors) {
-    EXPECT_EQ(errorOf("{}"), "scene.json: scene has no shapes");
-    EXPECT_EQ(errorOf(R"({"shapes": []})"), "scene.json: scene has no shapes");
-    EXPECT_EQ(errorOf(R"({"shapes": [{"positions": [[0,0,0]], "indices": [0,0,0]}]})"),
+    EXPECT_EQ(parseError("{}"), "scene.json: scene has no shapes");
+    EXPECT_EQ(parseError(R"({"shapes": []})"), "scene.json: scene has no shapes");
+    EXPECT_EQ(parseError(R"({"shapes": [{"positions": [[0,0,0]], "indices": [0,0,0]}]})"),
               "scene.json: /shapes/0: missing key 'type'");
-    EXPECT_EQ(errorOf(R"({"shapes": [{"type": "sphere"}]})"),
+    EXPECT_EQ(parseError(R"({"shapes": [{"type": "sphere"}]})"),
               "scene.json: /shapes/0/type: must be one of mesh, implicit, parametric, curves, subdivision, instance, got 'sphere'");
-    EXPECT_EQ(errorOf(R"({"shapes": [{"type": "mesh"}]})"),
+    EXPECT_EQ(parseError(R"({"shapes": [{"type": "mesh"}]})"),
               "scene.json: /shapes/0: needs 'file' (a mesh file) or 'positions' (an inline mesh)");
-    EXPECT_EQ(errorOf(triangleWith(R"("file": "a.ply")")),
+    EXPECT_EQ(parseError(triangleWith(R"("file": "a.ply")")),
               "scene.json: /shapes/0: 'file' and 'positions' are exclusive: give one");
-    EXPECT_EQ(errorOf(R"({"shapes": [{"type": "mesh", "file": "a.ply", "indices": [0, 1, 2]}]})"),
-              "scene.json: /shapes/0/indices: only for inline meshes (with 'positions'), not with "
-              "'file'");
-    EXPECT_EQ(errorOf(R"({"shapes": [{"type": "mesh", "file": "a.ply", "normals": [[0, 0, 1]]}]})"),
-              "scene.json: /shapes/0/normals: with 'file': \"file\", \"flat\" or \"smooth\" (an "
-              "array of normals is for inline meshes)");
-    EXPECT_EQ(errorOf(R"({"shapes": [{"type": "mesh", "positions": [[0,0,0]]}]})"),
+    EXPECT_EQ(
+        parseError(R"({"shapes": [{"type": "mesh", "file": "a.ply", "indices": [0, 1, 2]}]})"),
+        "scene.json: /shapes/0/indices: only for inline meshes (with 'positions'), not with "
+        "'file'");
+    EXPECT_EQ(
+        parseError(R"({"shapes": [{"type": "mesh", "file": "a.ply", "normals": [[0, 0, 1]]}]})"),
+        "scene.json: /shapes/0/normals: with 'file': \"file\", \"flat\" or \"smooth\" (an "
+        "array of normals is for inline meshes)");
+    EXPECT_EQ(parseError(R"({"shapes": [{"type": "mesh", "positions": [[0,0,0]]}]})"),
               "scene.json: /shapes/0: missing key 'indices'");
-    EXPECT_EQ(errorOf(R"({"shapes": [{"type": "mesh", "positions": [], "indices": []}]})"),
+    EXPECT_EQ(parseError(R"({"shapes": [{"type": "mesh", "positions": [], "indices": []}]})"),
               "scene.json: /shapes/0/indices: must contain at least one triangle");
     EXPECT_EQ(
-        errorOf(R"({"shapes": [{"type": "mesh", "positions": [[0,0,0]], "indices": [0,0]}]})"),
+        parseError(R"({"shapes": [{"type": "mesh", "positions": [[0,0,0]], "indices": [0,0]}]})"),
         "scene.json: /shapes/0/indices: has 2 entries, not a multiple of 3 (triangles only)");
+    EXPECT_EQ(parseError(
+                  R"({"shapes": [{"type": "mesh", "positions": [[0,0,0]], "indices": [0,-1,0]}]})"),
+              "scene.json: /shapes/0/indices/1: must be between 0 and 4294967295, got -1");
     EXPECT_EQ(
-        errorOf(R"({"shapes": [{"type": "mesh", "positions": [[0,0,0]], "indices": [0,-1,0]}]})"),
-        "scene.json: /shapes/0/indices/1: must be between 0 and 4294967295, got -1");
-    EXPECT_EQ(
-        errorOf(R"({"shapes": [{"type": "mesh", "positions": [[0,0,0]], "indices": [0,0,0.5]}]})"),
+        parseError(
+            R"({"shapes": [{"type": "mesh", "positions": [[0,0,0]], "indices": [0,0,0.5]}]})"),
         "scene.json: /shapes/0/indices/2: expected an integer, got number 0.5");
     // TriangleMesh::validate, with the shape's pointer as the source.
-    EXPECT_EQ(errorOf(R"({"shapes": [{"type": "mesh", "positions": [[0,0,0],[1,0,0],[0,1,0]],
+    EXPECT_EQ(parseError(R"({"shapes": [{"type": "mesh", "positions": [[0,0,0],[1,0,0],[0,1,0]],
                                       "indices": [0, 1, 2, 2, 1, 5]}]})"),
               "scene.json: /shapes/0: triangle 1 refers to vertex 5 but there are only 3 vertices");
-    EXPECT_EQ(errorOf(triangleWith(R"("normals": [[0,0,1]])")),
+    EXPECT_EQ(parseError(triangleWith(R"("normals": [[0,0,1]])")),
               "scene.json: /shapes/0: 1 normals for 3 vertices");
 }
 
 TEST(SceneParser, TransformErrors) {
     auto transformError = [](const std::string& ops) {
-        return errorOf(triangleWith(R"("transform": )" + ops));
+        return parseError(triangleWith(R"("transform": )" + ops));
     };
     EXPECT_EQ(transformError(R"({"scale": 2})"),
               "scene.json: /shapes/0/transform: expected an array, got object");

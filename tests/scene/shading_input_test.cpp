@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "scene_test_helpers.h"
 #include "strahl/core/error.h"
 #include "strahl/integrator/environment_light.h"
 #include "strahl/material/diffuse.h"
@@ -27,17 +28,9 @@ namespace {
 
 namespace fs = std::filesystem;
 using test::contains;
+using test::errorWith;
+using test::kTriangleShapes;
 using test::writeFile;
-
-const std::string kTriangle =
-    R"("shapes": [{"type": "mesh", "positions": [[0,0,0],[1,0,0],[0,1,0]], "indices": [0,1,2]}])";
-
-// The message of parsing a scene made of kTriangle plus `sections`
-// (comma-separated top-level members), labelled "scene.json".
-std::string errorWith(const std::string& sections) {
-    return test::errorMessage(
-        [&] { parseSceneText("{" + sections + ", " + kTriangle + "}", "scene.json"); });
-}
 
 std::string materialError(const std::string& material) {
     return errorWith(R"("materials": [)" + material + "]");
@@ -47,10 +40,10 @@ std::string lightError(const std::string& light) {
     return errorWith(R"("lights": [)" + light + "]");
 }
 
-// A scene file in `dir` made of kTriangle plus `sections`, parsed with its
+// A scene file in `dir` made of kTriangleShapes plus `sections`, parsed with its
 // real path (so relative files resolve against `dir`).
 SceneDesc parseIn(const fs::path& dir, const std::string& sections) {
-    const std::string text = "{" + sections + ", " + kTriangle + "}";
+    const std::string text = "{" + sections + ", " + kTriangleShapes + "}";
     writeFile(dir / "scene.json", text);
     return parseSceneText(text, dir / "scene.json");
 }
@@ -82,7 +75,7 @@ TEST(ShadingInput, OverflowingNumberIsASyntaxErrorAtTheNumber) {
     // 1e999 exceeds even a double: the JSON reader reports it where it is.
     EXPECT_EQ(test::errorMessage([] {
                   parseSceneText("{\"materials\": [{\"name\": \"m\",\n \"color\": 1e999}], " +
-                                     kTriangle + "}",
+                                     kTriangleShapes + "}",
                                  "scene.json");
               }),
               "scene.json:2:11: syntax error: number overflow parsing '1e999'");
@@ -144,7 +137,7 @@ TEST(ShadingInput, BlendKeys) {
     const SceneDesc ok = parseSceneText(
         R"({"materials": [{"name": "m", "type": "blend", "weight": 0.25, "materials": [)"
         R"({"type": "conductor", "metal": "gold"}, {"type": "blend", "materials": [{}, {"color": 0.1}]}]}], )" +
-            kTriangle + "}",
+            kTriangleShapes + "}",
         "scene.json");
     const auto& blend = std::get<BlendMaterial>(ok.materials.at(0).material.kind);
     EXPECT_EQ(blend.weight.value, 0.25f);
@@ -162,7 +155,7 @@ TEST(ShadingInput, CoatedConductorKeys) {
               "scene.json: /materials/0/ior: must be in [1.0001, 4], got 0.5");
     const SceneDesc ok = parseSceneText(
         R"({"materials": [{"name": "m", "type": "coated_conductor", "metal": "gold", "roughness": 0.3,
-            "coat_roughness": 0.1, "ior": 1.6, "thickness": 0.01}], )" + kTriangle + "}",
+            "coat_roughness": 0.1, "ior": 1.6, "thickness": 0.01}], )" + kTriangleShapes + "}",
         "scene.json");
     const auto& m = std::get<CoatedConductorMaterial>(ok.materials.at(0).material.kind);
     EXPECT_EQ(m.layers->coatEta(), 1.6f);
@@ -184,7 +177,8 @@ TEST(ShadingInput, PrincipledKeys) {
               "numbers, got array");
     const SceneDesc ok = parseSceneText(
         R"({"materials": [{"name": "m", "type": "principled", "specular": 0.5, "metallic":
-            {"checkerboard": {"color0": 0.7, "color1": 0.1, "scale": 25}}}], )" + kTriangle + "}",
+            {"checkerboard": {"color0": 0.7, "color1": 0.1, "scale": 25}}}], )" +
+            kTriangleShapes + "}",
         "scene.json");
     const auto& principled = std::get<PrincipledMaterial>(ok.materials.at(0).material.kind);
     EXPECT_NEAR(principled.eta, 1.5f, 1e-6f);  // Mitsuba's specular 0.5 is eta 1.5

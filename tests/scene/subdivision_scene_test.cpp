@@ -11,6 +11,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "scene_test_helpers.h"
 #include "strahl/geometry/subdivision_surface.h"
 #include "strahl/integrator/world.h"
 #include "strahl/scene/scene_builder.h"
@@ -35,15 +36,8 @@ std::string cube(const std::string& extra) {
     return s;
 }
 
-SceneDesc parse(const std::string& shape, const std::filesystem::path& file = "scene.json") {
-    std::string text = R"({"shapes": [)";
-    text.append(shape).append("]}");
-    return parseSceneText(text, file);
-}
-
-std::string errorOf(const std::string& shape) {
-    return test::errorMessage([&] { parse(shape); });
-}
+using test::parseShapes;
+using test::shapesError;
 
 const SubdivisionSurface& surfaceOf(const World& world) {
     const SubdivisionSurface* s = world.shapes.at(0).user->asSubdivision();
@@ -52,7 +46,7 @@ const SubdivisionSurface& surfaceOf(const World& world) {
 }
 
 TEST(SubdivisionScene, InlineCageWithEveryKey) {
-    const SceneDesc d = parse(cube(R"("name": "box", "levels": 4, "boundary": "pin_corners",
+    const SceneDesc d = parseShapes(cube(R"("name": "box", "levels": 4, "boundary": "pin_corners",
         "uvs": [[0,0],[1,0],[0,1],[1,1],[0,0],[1,0],[0,1],[1,1]],
         "creases": [[4, 5, "inf"], [5, 7, 2.5]], "corners": [[0, 1.5]], "holes": [2],
         "transform": [{"scale": 2}])"));
@@ -82,7 +76,7 @@ TEST(SubdivisionScene, InlineCageWithEveryKey) {
 TEST(SubdivisionScene, FormulaDisplacementInObjectUnits) {
     // h = 0.5 · 0.1 + 0.02 at every point, doubled by the transform's scale:
     // the face centre moves from 2 · 68/81 by 2 · 0.07.
-    const SceneDesc d = parse(cube(R"("levels": 2, "transform": [{"scale": 2}],
+    const SceneDesc d = parseShapes(cube(R"("levels": 2, "transform": [{"scale": 2}],
         "displacement": {"formula": "a * 0.1", "parameters": {"a": 0.5}, "offset": 0.02})"));
     const World world = buildWorld(d, BuildOptions{});
     const SubdivisionSurface& surface = surfaceOf(world);
@@ -100,12 +94,12 @@ TEST(SubdivisionScene, ImageDisplacementReadsTheCagesUvs) {
     ASSERT_TRUE(out->open((dir / "h.exr").string(), OIIO::ImageSpec(2, 2, 1, OIIO::TypeDesc::FLOAT)));
     ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels));
     out->close();
-    const SceneDesc d = parse(cube(R"("levels": 2, "uvs": [[0,0],[1,0],[0,1],[1,1],[0,0],[1,0],[0,1],[1,1]],
+    const SceneDesc d = parseShapes(cube(R"("levels": 2, "uvs": [[0,0],[1,0],[0,1],[1,1],[0,0],[1,0],[0,1],[1,1]],
         "displacement": {"image": "h.exr", "scale": 0.4})"), dir / "scene.json");
     const World world = buildWorld(d, BuildOptions{});
     const SubdivisionSurface& surface = surfaceOf(world);
     EXPECT_NEAR(surface.pointAt(1, 0.5f, 0.5f).z, 68.0 / 81.0 + 0.1, 1e-6);
-    EXPECT_THAT(errorOf(cube(R"("displacement": {"image": "h.exr"})")), HasSubstr("displacement image"));
+    EXPECT_THAT(shapesError(cube(R"("displacement": {"image": "h.exr"})")), HasSubstr("displacement image"));
 }
 
 TEST(SubdivisionScene, ObjCagesKeepTheirPolygons) {
@@ -114,7 +108,7 @@ TEST(SubdivisionScene, ObjCagesKeepTheirPolygons) {
                     "# a cube\nv -1 -1 -1\nv 1 -1 -1\nv -1 1 -1\nv 1 1 -1\nv -1 -1 1\nv 1 -1 1\nv -1 1 1\nv 1 1 1\n"
                     "vt 0 0\nvt 1 1\nvn 0 0 1\ns 1\n"
                     "f 1/1 3/1 4/1 2/1\nf 5/2 6/2 8/2 7/2\nf 1/1 2/1 6/2 5/2\nf 3 7 8 4\nf -8 -4 -2 -6\nf 2//1 4//1 8//1 6//1\n");
-    const SceneDesc d = parse(R"({"type": "subdivision", "file": "cage.obj", "levels": 3})", dir / "scene.json");
+    const SceneDesc d = parseShapes(R"({"type": "subdivision", "file": "cage.obj", "levels": 3})", dir / "scene.json");
     const World world = buildWorld(d, BuildOptions{});
     const SubdivisionSurface& surface = surfaceOf(world);
     EXPECT_EQ(surface.cage().faceSizes, (std::vector<uint32_t>(6, 4)));
@@ -131,7 +125,8 @@ TEST(SubdivisionScene, ObjCagesKeepTheirPolygons) {
                 HasSubstr("cage.obj:3: vertex index 3 is out of range (2 so far)"));
     test::writeFile(dir / "cage.txt", "");
     EXPECT_THAT(test::errorMessage([&] {
-                    parse(R"({"type": "subdivision", "file": "cage.txt"})", dir / "scene.json");
+                    parseShapes(R"({"type": "subdivision", "file": "cage.txt"})",
+                                dir / "scene.json");
                 }),
                 HasSubstr("a cage file must be an OBJ file"));
 }
@@ -155,38 +150,39 @@ TEST(SubdivisionScene, LevelsFromScreenSpaceEdgeLength) {
     EXPECT_EQ(levelsFor("1000").first, 1);
     // The memory limit caps them: 24 quads after one level, 24 · 4^(L−1) at
     // L, 150 bytes each: 200 KB hold 3 levels (58 KB) but not 4 (230 KB).
-    SubdivisionCage cage = parse(cube("")).shapes.at(0).subdivision.cage;
+    SubdivisionCage cage = parseShapes(cube("")).shapes.at(0).subdivision.cage;
     const auto tiny = [](const DVec3&) { return 1e-3; };
     bool capped = false;
     EXPECT_EQ(scene_detail::levelsForEdgeLength(cage, tiny, 0, capped), 8);
     EXPECT_FALSE(capped);
     EXPECT_EQ(scene_detail::levelsForEdgeLength(cage, tiny, 200000, capped), 3);
     EXPECT_TRUE(capped);
-    EXPECT_THAT(errorOf(cube(R"("levels": 2, "max_edge_pixels": 3)")),
+    EXPECT_THAT(shapesError(cube(R"("levels": 2, "max_edge_pixels": 3)")),
                 HasSubstr("give 'levels' or 'max_edge_pixels', not both"));
 }
 
 TEST(SubdivisionScene, BadInputNamesItsPlace) {
-    EXPECT_THAT(errorOf(R"({"type": "subdivision"})"), HasSubstr("/shapes/0: needs 'positions' and 'faces'"));
-    EXPECT_THAT(errorOf(cube(R"("levels": 9)")), HasSubstr("/shapes/0/levels"));
-    EXPECT_THAT(errorOf(R"({"type": "subdivision", "positions": [[0,0,0],[1,0,0]], "faces": [[0,1]]})"),
+    EXPECT_THAT(shapesError(R"({"type": "subdivision"})"), HasSubstr("/shapes/0: needs 'positions' and 'faces'"));
+    EXPECT_THAT(shapesError(cube(R"("levels": 9)")), HasSubstr("/shapes/0/levels"));
+    EXPECT_THAT(shapesError(R"({"type": "subdivision", "positions": [[0,0,0],[1,0,0]], "faces": [[0,1]]})"),
                 HasSubstr("/shapes/0/faces/0: expected an array of 3 to 15 vertex indices"));
-    EXPECT_THAT(errorOf(R"({"type": "subdivision", "positions": [[0,0,0],[1,0,0],[0,1,0]], "faces": [[0,1,3]]})"),
+    EXPECT_THAT(shapesError(R"({"type": "subdivision", "positions": [[0,0,0],[1,0,0],[0,1,0]], "faces": [[0,1,3]]})"),
                 HasSubstr("/shapes/0/faces/0/2"));
-    EXPECT_THAT(errorOf(cube(R"("creases": [[0, 7, 1]])")),
+    EXPECT_THAT(shapesError(cube(R"("creases": [[0, 7, 1]])")),
                 HasSubstr("scene.json: /shapes/0: the cage: crease 0 (0-7) is not an edge of the mesh"));
-    EXPECT_THAT(errorOf(cube(R"("creases": [[0, 1, -1]])")), HasSubstr("/shapes/0/creases/0/2"));
-    EXPECT_THAT(errorOf(cube(R"("creases": [[0, 1, "infinite"]])")), HasSubstr("/shapes/0/creases/0/2"));
-    EXPECT_THAT(errorOf(cube(R"("creases": [[0, 1]])")), HasSubstr("expected [vertex, vertex, sharpness]"));
-    EXPECT_THAT(errorOf(cube(R"("corners": [[9, 1]])")), HasSubstr("corner 0 names vertex 9, but there are 8"));
-    EXPECT_THAT(errorOf(cube(R"("holes": [6])")), HasSubstr("hole 6 is not a face (6 faces)"));
-    EXPECT_THAT(errorOf(cube(R"("boundary": "none")")), HasSubstr("/shapes/0/boundary"));
-    EXPECT_THAT(errorOf(cube(R"("displacement": {"formula": "x +"})")), HasSubstr("/shapes/0/displacement/formula"));
-    EXPECT_THAT(errorOf(cube(R"("displacement": {"formula": "x", "image": "h.png"})")),
+    EXPECT_THAT(shapesError(cube(R"("creases": [[0, 1, -1]])")),
+                HasSubstr("/shapes/0/creases/0/2"));
+    EXPECT_THAT(shapesError(cube(R"("creases": [[0, 1, "infinite"]])")), HasSubstr("/shapes/0/creases/0/2"));
+    EXPECT_THAT(shapesError(cube(R"("creases": [[0, 1]])")), HasSubstr("expected [vertex, vertex, sharpness]"));
+    EXPECT_THAT(shapesError(cube(R"("corners": [[9, 1]])")), HasSubstr("corner 0 names vertex 9, but there are 8"));
+    EXPECT_THAT(shapesError(cube(R"("holes": [6])")), HasSubstr("hole 6 is not a face (6 faces)"));
+    EXPECT_THAT(shapesError(cube(R"("boundary": "none")")), HasSubstr("/shapes/0/boundary"));
+    EXPECT_THAT(shapesError(cube(R"("displacement": {"formula": "x +"})")), HasSubstr("/shapes/0/displacement/formula"));
+    EXPECT_THAT(shapesError(cube(R"("displacement": {"formula": "x", "image": "h.png"})")),
                 HasSubstr("give 'formula' or 'image', not both"));
-    EXPECT_THAT(errorOf(cube(R"("displacement": {"scale": 2})")), HasSubstr("needs 'formula'"));
-    EXPECT_THAT(errorOf(cube(R"("uvs": [[0,0]])")), HasSubstr("/shapes/0/uvs: expected one [u, v] per position (8)"));
-    EXPECT_THAT(errorOf(cube(R"("flip_normals": true)")),
+    EXPECT_THAT(shapesError(cube(R"("displacement": {"scale": 2})")), HasSubstr("needs 'formula'"));
+    EXPECT_THAT(shapesError(cube(R"("uvs": [[0,0]])")), HasSubstr("/shapes/0/uvs: expected one [u, v] per position (8)"));
+    EXPECT_THAT(shapesError(cube(R"("flip_normals": true)")),
                 HasSubstr("unknown key 'flip_normals' (allowed: type, name, material, transform, motion, positions, "
                           "faces, uvs, file, levels, max_edge_pixels, creases, corners, holes, boundary, displacement)"));
 }
