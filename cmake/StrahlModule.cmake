@@ -10,6 +10,15 @@ function(strahl_warnings target)
   endif()
 endfunction()
 
+# With STRAHL_UNITY_SRC, compiles the target's sources 8 to a translation
+# unit: few enough that an edit rebuilds little, and enough batches to keep
+# both cores of a CI machine busy.
+function(strahl_unity target)
+  if(STRAHL_UNITY_SRC)
+    set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 8)
+  endif()
+endfunction()
+
 function(strahl_module name)
   cmake_parse_arguments(ARG "" "" "DEPS;PRIVATE_DEPS" ${ARGN})
   file(GLOB _sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/${name}/*.cpp)
@@ -19,4 +28,5 @@ function(strahl_module name)
   target_include_directories(strahl_${name} PUBLIC ${PROJECT_SOURCE_DIR}/include)
   target_link_libraries(strahl_${name} PUBLIC ${ARG_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
   strahl_warnings(strahl_${name})
+  strahl_unity(strahl_${name})
 endfunction()

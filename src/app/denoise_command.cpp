@@ -4,7 +4,6 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -21,12 +20,6 @@ namespace strahl::app {
 namespace fs = std::filesystem;
 
 namespace {
-
-bool isExr(const fs::path& file) {
-    std::string ext = file.extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext == ".exr";
-}
 
 // An EXR read whole: channel names, their types and interleaved float pixels.
 struct ExrImage {

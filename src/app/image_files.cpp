@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cctype>
 #include <memory>
 #include <string>
 
@@ -26,6 +27,12 @@ void writeExrFile(const std::filesystem::path& file, const OIIO::ImageSpec& spec
             return out->geterror();
         return std::string();
     });
+}
+
+bool isExr(const std::filesystem::path& file) {
+    std::string ext = file.extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext == ".exr";
 }
 
 }  // namespace strahl::app

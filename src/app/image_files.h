@@ -1,7 +1,8 @@
 #pragma once
 // What the commands that write images share: the display-transform options
-// (render, merge, denoise) and writing a whole float EXR under a temporary
-// name (assemble, denoise).
+// (render, merge, denoise), writing a whole float EXR under a temporary name
+// (assemble, denoise) and telling EXR outputs by their extension (merge,
+// denoise).
 
 #include <OpenImageIO/imageio.h>
 
@@ -24,5 +25,8 @@ void addDisplayOptions(CLI::App& command, ColorSettings& color);
 // (film/image_output.h writeFileAtomically): no partial file on failure.
 void writeExrFile(const std::filesystem::path& file, const OIIO::ImageSpec& spec,
                   const std::vector<float>& pixels);
+
+// Whether `file` has the extension .exr, in any letter case.
+bool isExr(const std::filesystem::path& file);
 
 }  // namespace strahl::app

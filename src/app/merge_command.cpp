@@ -3,7 +3,6 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <filesystem>
 
@@ -16,12 +15,6 @@
 namespace strahl::app {
 
 namespace {
-
-bool isExr(const std::filesystem::path& file) {
-    std::string ext = file.extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext == ".exr";
-}
 
 // The image channels (beauty and AOVs) with their types, without the exact
 // state (strahl.*), which only some parts may carry.

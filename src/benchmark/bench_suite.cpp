@@ -14,6 +14,7 @@
 #include <cmath>
 #include <limits>
 
+#include "bench_clock.h"
 #include "strahl/camera/tile_rays.h"
 #include "strahl/core/error.h"
 #include "strahl/core/rng.h"
@@ -27,11 +28,8 @@ namespace strahl {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
+using bench_detail::Clock;
+using bench_detail::secondsSince;
 
 // Runs pass() `repeats` times and returns the shortest time.
 template <typename Pass>

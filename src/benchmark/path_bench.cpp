@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "bench_clock.h"
 #include "strahl/core/error.h"
 #include "strahl/film/film.h"
 #include "strahl/render/renderer.h"
@@ -18,11 +19,8 @@ namespace strahl {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
+using bench_detail::Clock;
+using bench_detail::secondsSince;
 
 // Collects every string under a "file" key, at any depth: the mesh, patch and
 // image files a scene names (scene-format.md), relative to its folder.

@@ -18,7 +18,17 @@ namespace strahl {
 
 namespace {
 
-using namespace bsdf_models;
+using bsdf_models::CoatedConductorModel;
+using bsdf_models::ConductorModel;
+using bsdf_models::DielectricModel;
+using bsdf_models::DiffuseTransmissionModel;
+using bsdf_models::HairModel;
+using bsdf_models::LambertModel;
+using bsdf_models::MetallicRoughnessModel;
+using bsdf_models::PhongModel;
+using bsdf_models::PlasticModel;
+using bsdf_models::PrincipledModel;
+using bsdf_models::ThinDielectricModel;
 
 void requireColor(const char* bsdf, const char* what, const Color& c) {
     if (!isFinite(c) || c.r < 0.0f || c.g < 0.0f || c.b < 0.0f) {

@@ -44,7 +44,8 @@ constexpr int kNormalNodes = 48;
 // Nodes of the one-dimensional integrals over cos theta (smooth integrands).
 constexpr int kCosineNodes = 32;
 
-float tableCosine(int i) {
+// The i-th cosine of CoatedBase's tables, i / (kCosines - 1), kept off the horizon.
+float coatedBaseCosine(int i) {
     return std::max(1e-4f, float(i) / float(CoatedBase::kCosines - 1));
 }
 
@@ -125,7 +126,8 @@ const CoatedBase::EscapeTable::Row& CoatedBase::EscapeTable::row(int j) const {
         // The row is indexed by the cosine outside: light from outside only
         // reaches the metal within the critical cone, where the Fresnel terms
         // change fastest in the inside cosine but smoothly in the outside one.
-        for (int i = 0; i < kCosines; ++i) r.trapped[size_t(i)] = trapped(insideCosine(tableCosine(i), coatEta));
+        for (int i = 0; i < kCosines; ++i)
+            r.trapped[size_t(i)] = trapped(insideCosine(coatedBaseCosine(i), coatEta));
         // The trapped light meets the metal from every inside direction:
         // 2 integral_0^1 trapped(mu) mu dmu over the whole inside hemisphere.
         double sum = 0.0;

@@ -8,13 +8,13 @@
 namespace strahl::denoise_detail {
 
 namespace {
-constexpr int kTileSize = 32;  // pixels per tile side: the tile's sums stay in cache
+constexpr int kNlMeansTileSize = 32;  // pixels per tile side: the tile's sums stay in cache
 }
 
 PlanarImage nlMeans(const PlanarImage& data, const PatchWeights& weights, int windowRadius) {
     const int W = data.width, H = data.height, C = data.channels;
     PlanarImage out(W, H, C);
-    const std::vector<Region> tiles = imageTiles(W, H, kTileSize);
+    const std::vector<Region> tiles = imageTiles(W, H, kNlMeansTileSize);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const auto& range) {
         std::vector<float> scratch, w, sums, total;
         for (size_t t = range.begin(); t != range.end(); ++t) {

@@ -9,6 +9,7 @@
 #include <memory>
 #include <utility>
 
+#include "double_box.h"
 #include "strahl/core/error.h"
 
 namespace strahl {
@@ -103,9 +104,7 @@ num::Interval bicubicRange(const std::array<double, 16>& c, const num::Interval&
 
 namespace {
 
-bool finite(const DVec3& p) {
-    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
-}
+using geometry_detail::isFiniteD;
 
 class BezierPatchSet final : public ParametricSurfaceOf<BezierPatchSet> {
 public:
@@ -191,7 +190,7 @@ ParametricSurfacePtr makeBezierPatchSet(std::vector<BezierPatch> patches, std::s
     for (size_t p = 0; p < patches.size(); ++p)
         for (size_t k = 0; k < 16; ++k) {
             const DVec3& q = patches[p].points[k];
-            if (!finite(q))
+            if (!isFiniteD(q))
                 fail(what, ": control point ", k, " of patch ", p, " is not finite (", q.x, " ",
                      q.y, " ", q.z, ")");
         }

@@ -12,11 +12,14 @@
 
 #include <glm/glm.hpp>
 
+#include "double_box.h"
 #include "strahl/core/error.h"
 
 namespace strahl {
 
 namespace {
+
+using geometry_detail::isFiniteD;
 
 constexpr float kInfiniteSharpness = std::numeric_limits<float>::infinity();
 // Refined quads beyond this are refused: about 150 bytes each for the
@@ -346,13 +349,11 @@ std::vector<T> limitOf(const Level& level, const std::vector<T>& x, const std::v
     return out;
 }
 
-bool finite(const DVec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
-
 Level levelZero(const SubdivisionCage& cage, const std::string& name) {
     if (cage.faceSizes.empty()) fail(name, ": no faces");
     if (cage.positions.empty()) fail(name, ": no positions");
     for (size_t i = 0; i < cage.positions.size(); ++i)
-        if (!finite(cage.positions[i])) fail(name, ": position ", i, " is not finite");
+        if (!isFiniteD(cage.positions[i])) fail(name, ": position ", i, " is not finite");
     if (!cage.uvs.empty() && cage.uvs.size() != cage.positions.size())
         fail(name, ": ", cage.uvs.size(), " uvs for ", cage.positions.size(), " positions (one per position)");
     for (size_t i = 0; i < cage.uvs.size(); ++i)

@@ -2,7 +2,7 @@
 // Internal to the geometry module: double-precision boxes for the user shapes
 // that intersect in double (implicit cells, parametric sub-patches) — clipping
 // a ray to a box, and rounding a double box outwards to the float Bounds3 an
-// accelerator takes.
+// accelerator takes — and the finiteness test of a DVec3 the module shares.
 
 #include <algorithm>
 #include <cmath>

@@ -18,6 +18,7 @@
 #include <memory>
 #include <utility>
 
+#include "dual_value.h"
 #include "strahl/core/error.h"
 #include "strahl/geometry/bezier_patches.h"
 
@@ -25,12 +26,7 @@ namespace strahl {
 
 namespace {
 
-double valueOf(double x) {
-    return x;
-}
-double valueOf(const Dual2& x) {
-    return x.v;
-}
+using geometry_detail::valueOf;
 
 // A sub-rectangle touching at most this many cells is bounded cell by cell
 // (tight); larger ones by the sample range plus overshoot (constant time).

@@ -62,24 +62,22 @@ private:
 
 namespace strahl {
 
-using namespace implicit_detail;
-
 ImplicitSurfacePtr makeBlobs(std::vector<Blob> blobs, double threshold) {
     if (blobs.empty()) fail("blobs need at least one blob");
-    requirePositive("threshold", threshold);
+    implicit_detail::requirePositive("threshold", threshold);
     for (const Blob& b : blobs) {
-        requireFinite("center", b.center.x);
-        requireFinite("center", b.center.y);
-        requireFinite("center", b.center.z);
-        requirePositive("radius", b.radius);
-        requireFinite("strength", b.strength);
+        implicit_detail::requireFinite("center", b.center.x);
+        implicit_detail::requireFinite("center", b.center.y);
+        implicit_detail::requireFinite("center", b.center.z);
+        implicit_detail::requirePositive("radius", b.radius);
+        implicit_detail::requireFinite("strength", b.strength);
     }
-    return std::make_shared<Blobs>(std::move(blobs), threshold);
+    return std::make_shared<implicit_detail::Blobs>(std::move(blobs), threshold);
 }
 
 namespace {
 
-ImplicitSurfacePtr parse(const SurfaceParameters& p) {
+ImplicitSurfacePtr parseImplicitBlobs(const SurfaceParameters& p) {
     p.requireKeys({"type", "transform", "threshold", "blobs"});
     const auto list = p.child("blobs");
     std::vector<Blob> blobs;
@@ -96,11 +94,11 @@ ImplicitSurfacePtr parse(const SurfaceParameters& p) {
     return p.checked([&] { return makeBlobs(std::move(blobs), threshold); });
 }
 
-constexpr std::array<std::string_view, 1> kNames = {"blobs"};
+constexpr std::array<std::string_view, 1> kImplicitBlobsNames = {"blobs"};
 
 }  // namespace
 
 extern const ImplicitKind kImplicitBlobs;
-const ImplicitKind kImplicitBlobs{kNames, &parse};
+const ImplicitKind kImplicitBlobs{kImplicitBlobsNames, &parseImplicitBlobs};
 
 }  // namespace strahl

@@ -11,7 +11,7 @@ extern const ImplicitKind kImplicitSphere, kImplicitQuadric, kImplicitTorus,
 
 namespace {
 
-const ImplicitKind* const kKinds[] = {
+const ImplicitKind* const kImplicitKinds[] = {
     &kImplicitSphere,         //
     &kImplicitQuadric,        //
     &kImplicitTorus,          //
@@ -23,7 +23,7 @@ const ImplicitKind* const kKinds[] = {
 }  // namespace
 
 std::span<const ImplicitKind* const> implicitKinds() {
-    return kKinds;
+    return kImplicitKinds;
 }
 
 const ImplicitKind* findImplicitKind(std::string_view name) {

@@ -93,20 +93,18 @@ private:
 
 namespace strahl {
 
-using namespace implicit_detail;
-
 ImplicitSurfacePtr makePeriodicSurface(PeriodicSurface kind, double period, double level,
                                        double thickness) {
-    requirePositive("period", period);
-    requireFinite("level", level);
-    requireFinite("thickness", thickness);
+    implicit_detail::requirePositive("period", period);
+    implicit_detail::requireFinite("level", level);
+    implicit_detail::requireFinite("thickness", thickness);
     if (thickness < 0.0) fail("parameter 'thickness' must be ≥ 0 (got ", thickness, ")");
-    return std::make_shared<Periodic>(kind, period, level, thickness);
+    return std::make_shared<implicit_detail::Periodic>(kind, period, level, thickness);
 }
 
 namespace {
 
-ImplicitSurfacePtr parse(const SurfaceParameters& p) {
+ImplicitSurfacePtr parseImplicitPeriodic(const SurfaceParameters& p) {
     p.requireKeys({"type", "transform", "period", "level", "thickness"});
     const std::string_view type = p.type();
     const PeriodicSurface kind = type == "gyroid"      ? PeriodicSurface::Gyroid
@@ -118,11 +116,12 @@ ImplicitSurfacePtr parse(const SurfaceParameters& p) {
     return p.checked([&] { return makePeriodicSurface(kind, period, level, thickness); });
 }
 
-constexpr std::array<std::string_view, 4> kNames = {"gyroid", "schwarz_p", "schwarz_d", "neovius"};
+constexpr std::array<std::string_view, 4> kImplicitPeriodicNames = {"gyroid", "schwarz_p",
+                                                                    "schwarz_d", "neovius"};
 
 }  // namespace
 
 extern const ImplicitKind kImplicitPeriodic;
-const ImplicitKind kImplicitPeriodic{kNames, &parse};
+const ImplicitKind kImplicitPeriodic{kImplicitPeriodicNames, &parseImplicitPeriodic};
 
 }  // namespace strahl

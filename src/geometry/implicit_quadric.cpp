@@ -48,23 +48,21 @@ private:
 
 namespace strahl {
 
-using namespace implicit_detail;
-
 ImplicitSurfacePtr makeImplicitQuadric(const QuadricCoefficients& q) {
     const double all[] = {q.xx, q.yy, q.zz, q.xy, q.yz, q.xz, q.x, q.y, q.z, q.c};
     const char* names[] = {"xx", "yy", "zz", "xy", "yz", "xz", "x", "y", "z", "c"};
     bool anyNonZero = false;
     for (int i = 0; i < 10; ++i) {
-        requireFinite(names[i], all[i]);
+        implicit_detail::requireFinite(names[i], all[i]);
         anyNonZero = anyNonZero || (i < 9 && all[i] != 0.0);
     }
     if (!anyNonZero) fail("quadric coefficients are all zero apart from the constant");
-    return std::make_shared<Quadric>(q);
+    return std::make_shared<implicit_detail::Quadric>(q);
 }
 
 namespace {
 
-ImplicitSurfacePtr parse(const SurfaceParameters& p) {
+ImplicitSurfacePtr parseImplicitQuadric(const SurfaceParameters& p) {
     p.requireKeys({"type", "transform", "coefficients"});
     const auto c = p.child("coefficients");
     c->requireKeys({"xx", "yy", "zz", "xy", "yz", "xz", "x", "y", "z", "c"});
@@ -82,11 +80,11 @@ ImplicitSurfacePtr parse(const SurfaceParameters& p) {
     return p.checked([&] { return makeImplicitQuadric(q); });
 }
 
-constexpr std::array<std::string_view, 1> kNames = {"quadric"};
+constexpr std::array<std::string_view, 1> kImplicitQuadricNames = {"quadric"};
 
 }  // namespace
 
 extern const ImplicitKind kImplicitQuadric;
-const ImplicitKind kImplicitQuadric{kNames, &parse};
+const ImplicitKind kImplicitQuadric{kImplicitQuadricNames, &parseImplicitQuadric};
 
 }  // namespace strahl

@@ -46,26 +46,24 @@ private:
 
 namespace strahl {
 
-using namespace implicit_detail;
-
 ImplicitSurfacePtr makeImplicitSphere(double radius) {
-    requirePositive("radius", radius);
-    return std::make_shared<Sphere>(radius);
+    implicit_detail::requirePositive("radius", radius);
+    return std::make_shared<implicit_detail::Sphere>(radius);
 }
 
 namespace {
 
-ImplicitSurfacePtr parse(const SurfaceParameters& p) {
+ImplicitSurfacePtr parseImplicitSphere(const SurfaceParameters& p) {
     p.requireKeys({"type", "transform", "radius"});
     const double r = p.number("radius", 1.0);
     return p.checked([&] { return makeImplicitSphere(r); });
 }
 
-constexpr std::array<std::string_view, 1> kNames = {"sphere"};
+constexpr std::array<std::string_view, 1> kImplicitSphereNames = {"sphere"};
 
 }  // namespace
 
 extern const ImplicitKind kImplicitSphere;
-const ImplicitKind kImplicitSphere{kNames, &parse};
+const ImplicitKind kImplicitSphere{kImplicitSphereNames, &parseImplicitSphere};
 
 }  // namespace strahl

@@ -51,35 +51,34 @@ private:
 
 namespace strahl {
 
-using namespace implicit_detail;
-
 ImplicitSurfacePtr makeSuperellipsoid(const DVec3& radii, double e1, double e2) {
-    requirePositive("radii.x", radii.x);
-    requirePositive("radii.y", radii.y);
-    requirePositive("radii.z", radii.z);
-    requirePositive("e1", e1);
-    requirePositive("e2", e2);
+    implicit_detail::requirePositive("radii.x", radii.x);
+    implicit_detail::requirePositive("radii.y", radii.y);
+    implicit_detail::requirePositive("radii.z", radii.z);
+    implicit_detail::requirePositive("e1", e1);
+    implicit_detail::requirePositive("e2", e2);
     // Exponents 2/e must stay representable: below 0.01 the surface is a box to
     // within rounding and the powers overflow.
     if (e1 < 0.01 || e2 < 0.01 || e1 > 10.0 || e2 > 10.0)
         fail("superellipsoid exponents e1, e2 must lie in [0.01, 10]");
-    return std::make_shared<Superellipsoid>(radii, e1, e2);
+    return std::make_shared<implicit_detail::Superellipsoid>(radii, e1, e2);
 }
 
 namespace {
 
-ImplicitSurfacePtr parse(const SurfaceParameters& p) {
+ImplicitSurfacePtr parseImplicitSuperellipsoid(const SurfaceParameters& p) {
     p.requireKeys({"type", "transform", "radii", "e1", "e2"});
     const DVec3 r = p.vec3("radii", DVec3(1.0));
     const double e1 = p.number("e1", 1.0), e2 = p.number("e2", 1.0);
     return p.checked([&] { return makeSuperellipsoid(r, e1, e2); });
 }
 
-constexpr std::array<std::string_view, 1> kNames = {"superellipsoid"};
+constexpr std::array<std::string_view, 1> kImplicitSuperellipsoidNames = {"superellipsoid"};
 
 }  // namespace
 
 extern const ImplicitKind kImplicitSuperellipsoid;
-const ImplicitKind kImplicitSuperellipsoid{kNames, &parse};
+const ImplicitKind kImplicitSuperellipsoid{kImplicitSuperellipsoidNames,
+                                           &parseImplicitSuperellipsoid};
 
 }  // namespace strahl

@@ -51,27 +51,25 @@ private:
 
 namespace strahl {
 
-using namespace implicit_detail;
-
 ImplicitSurfacePtr makeImplicitTorus(double majorRadius, double minorRadius) {
-    requirePositive("major_radius", majorRadius);
-    requirePositive("minor_radius", minorRadius);
-    return std::make_shared<Torus>(majorRadius, minorRadius);
+    implicit_detail::requirePositive("major_radius", majorRadius);
+    implicit_detail::requirePositive("minor_radius", minorRadius);
+    return std::make_shared<implicit_detail::Torus>(majorRadius, minorRadius);
 }
 
 namespace {
 
-ImplicitSurfacePtr parse(const SurfaceParameters& p) {
+ImplicitSurfacePtr parseImplicitTorus(const SurfaceParameters& p) {
     p.requireKeys({"type", "transform", "major_radius", "minor_radius"});
     const double R = p.number("major_radius", 1.0), r = p.number("minor_radius", 0.25);
     return p.checked([&] { return makeImplicitTorus(R, r); });
 }
 
-constexpr std::array<std::string_view, 1> kNames = {"torus"};
+constexpr std::array<std::string_view, 1> kImplicitTorusNames = {"torus"};
 
 }  // namespace
 
 extern const ImplicitKind kImplicitTorus;
-const ImplicitKind kImplicitTorus{kNames, &parse};
+const ImplicitKind kImplicitTorus{kImplicitTorusNames, &parseImplicitTorus};
 
 }  // namespace strahl

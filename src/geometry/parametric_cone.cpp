@@ -38,27 +38,25 @@ private:
 
 namespace strahl {
 
-using namespace parametric_detail;
-
 ParametricSurfacePtr makeParametricCone(double radius, double height) {
-    requirePositive("radius", radius);
-    requirePositive("height", height);
-    return std::make_shared<Cone>(radius, height);
+    parametric_detail::requirePositive("radius", radius);
+    parametric_detail::requirePositive("height", height);
+    return std::make_shared<parametric_detail::Cone>(radius, height);
 }
 
 namespace {
 
-ParametricSurfacePtr parse(const SurfaceParameters& p) {
+ParametricSurfacePtr parseParametricCone(const SurfaceParameters& p) {
     p.requireKeys({"type", "radius", "height"});
     const double r = p.number("radius", 1.0), h = p.number("height", 1.0);
     return p.checked([&] { return makeParametricCone(r, h); });
 }
 
-constexpr std::array<std::string_view, 1> kNames = {"cone"};
+constexpr std::array<std::string_view, 1> kParametricConeNames = {"cone"};
 
 }  // namespace
 
 extern const ParametricKind kParametricCone;
-const ParametricKind kParametricCone{kNames, &parse};
+const ParametricKind kParametricCone{kParametricConeNames, &parseParametricCone};
 
 }  // namespace strahl

@@ -38,29 +38,27 @@ private:
 
 namespace strahl {
 
-using namespace parametric_detail;
-
 ParametricSurfacePtr makeParametricCylinder(double radius, double zMin, double zMax) {
-    requirePositive("radius", radius);
+    parametric_detail::requirePositive("radius", radius);
     if (!(std::isfinite(zMin) && std::isfinite(zMax) && zMin < zMax))
         fail("z_min must be below z_max, both finite (got ", zMin, " and ", zMax, ")");
-    return std::make_shared<Cylinder>(radius, zMin, zMax);
+    return std::make_shared<parametric_detail::Cylinder>(radius, zMin, zMax);
 }
 
 namespace {
 
-ParametricSurfacePtr parse(const SurfaceParameters& p) {
+ParametricSurfacePtr parseParametricCylinder(const SurfaceParameters& p) {
     p.requireKeys({"type", "radius", "z_min", "z_max"});
     const double r = p.number("radius", 1.0), z0 = p.number("z_min", -1.0),
                  z1 = p.number("z_max", 1.0);
     return p.checked([&] { return makeParametricCylinder(r, z0, z1); });
 }
 
-constexpr std::array<std::string_view, 1> kNames = {"cylinder"};
+constexpr std::array<std::string_view, 1> kParametricCylinderNames = {"cylinder"};
 
 }  // namespace
 
 extern const ParametricKind kParametricCylinder;
-const ParametricKind kParametricCylinder{kNames, &parse};
+const ParametricKind kParametricCylinder{kParametricCylinderNames, &parseParametricCylinder};
 
 }  // namespace strahl

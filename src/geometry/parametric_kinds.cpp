@@ -11,7 +11,7 @@ extern const ParametricKind kParametricSphere, kParametricTorus, kParametricCyli
 
 namespace {
 
-const ParametricKind* const kKinds[] = {
+const ParametricKind* const kParametricKinds[] = {
     &kParametricSphere,    //
     &kParametricTorus,     //
     &kParametricCylinder,  //
@@ -22,7 +22,7 @@ const ParametricKind* const kKinds[] = {
 }  // namespace
 
 std::span<const ParametricKind* const> parametricKinds() {
-    return kKinds;
+    return kParametricKinds;
 }
 
 const ParametricKind* findParametricKind(std::string_view name) {

@@ -49,29 +49,27 @@ private:
 
 namespace strahl {
 
-using namespace parametric_detail;
-
 ParametricSurfacePtr makeMobiusStrip(double radius, double halfWidth) {
-    requirePositive("radius", radius);
-    requirePositive("half_width", halfWidth);
+    parametric_detail::requirePositive("radius", radius);
+    parametric_detail::requirePositive("half_width", halfWidth);
     if (!(halfWidth < radius))
         fail("half_width (", halfWidth, ") must be below radius (", radius, ")");
-    return std::make_shared<Mobius>(radius, halfWidth);
+    return std::make_shared<parametric_detail::Mobius>(radius, halfWidth);
 }
 
 namespace {
 
-ParametricSurfacePtr parse(const SurfaceParameters& p) {
+ParametricSurfacePtr parseParametricMobius(const SurfaceParameters& p) {
     p.requireKeys({"type", "radius", "half_width"});
     const double R = p.number("radius", 1.0), w = p.number("half_width", 0.3);
     return p.checked([&] { return makeMobiusStrip(R, w); });
 }
 
-constexpr std::array<std::string_view, 1> kNames = {"mobius"};
+constexpr std::array<std::string_view, 1> kParametricMobiusNames = {"mobius"};
 
 }  // namespace
 
 extern const ParametricKind kParametricMobius;
-const ParametricKind kParametricMobius{kNames, &parse};
+const ParametricKind kParametricMobius{kParametricMobiusNames, &parseParametricMobius};
 
 }  // namespace strahl

@@ -37,26 +37,24 @@ private:
 
 namespace strahl {
 
-using namespace parametric_detail;
-
 ParametricSurfacePtr makeParametricSphere(double radius) {
-    requirePositive("radius", radius);
-    return std::make_shared<Sphere>(radius);
+    parametric_detail::requirePositive("radius", radius);
+    return std::make_shared<parametric_detail::Sphere>(radius);
 }
 
 namespace {
 
-ParametricSurfacePtr parse(const SurfaceParameters& p) {
+ParametricSurfacePtr parseParametricSphere(const SurfaceParameters& p) {
     p.requireKeys({"type", "radius"});
     const double r = p.number("radius", 1.0);
     return p.checked([&] { return makeParametricSphere(r); });
 }
 
-constexpr std::array<std::string_view, 1> kNames = {"sphere"};
+constexpr std::array<std::string_view, 1> kParametricSphereNames = {"sphere"};
 
 }  // namespace
 
 extern const ParametricKind kParametricSphere;
-const ParametricKind kParametricSphere{kNames, &parse};
+const ParametricKind kParametricSphere{kParametricSphereNames, &parseParametricSphere};
 
 }  // namespace strahl

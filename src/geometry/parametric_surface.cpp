@@ -4,13 +4,14 @@
 
 #include <glm/geometric.hpp>
 
+#include "double_box.h"
 #include "strahl/core/error.h"
 
 namespace strahl {
 
 namespace {
 
-bool finite(const DVec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+using geometry_detail::isFiniteD;
 
 DVec3 toVec(const Point3<double>& p) { return DVec3(p.x, p.y, p.z); }
 
@@ -37,7 +38,7 @@ std::optional<DVec3> ParametricSurface::regularNormal(const SurfacePoint& s) {
     const DVec3 n = glm::cross(s.dpdu, s.dpdv);
     const double len = glm::length(n);
     const double scale = glm::length(s.dpdu) * glm::length(s.dpdv);
-    if (finite(n) && len > kSingular * scale && len > 0.0) return n / len;
+    if (isFiniteD(n) && len > kSingular * scale && len > 0.0) return n / len;
     return std::nullopt;
 }
 
@@ -61,8 +62,8 @@ void ParametricSurface::setTextureFrame(SurfaceInteraction& si, const SurfacePoi
                  static_cast<float>((v - dom.v0) / dom.height()));
     const DVec3 dpds = linear * (dom.width() * s.dpdu);
     const DVec3 dpdt = linear * (dom.height() * s.dpdv);
-    if (finite(dpds)) si.dpdu = Vec3(dpds);
-    if (finite(dpdt)) si.dpdv = Vec3(dpdt);
+    if (isFiniteD(dpds)) si.dpdu = Vec3(dpds);
+    if (isFiniteD(dpdt)) si.dpdv = Vec3(dpdt);
     const double area = glm::length(glm::cross(dpds, dpdt));
     // Zero area (a pole, where ∂φ f vanishes) or overflow: density unknown.
     if (area > 0.0 && std::isfinite(area)) si.uvDensity = static_cast<float>(1.0 / std::sqrt(area));
@@ -97,7 +98,7 @@ void validateParametricSurface(const ParametricSurface& surface) {
                 const double u = d.u0 + d.width() * i / kSamples;
                 const double v = d.v0 + d.height() * j / kSamples;
                 const SurfacePoint s = surface.partials(patch, u, v);
-                if (!finite(s.p) || !finite(s.dpdu) || !finite(s.dpdv))
+                if (!isFiniteD(s.p) || !isFiniteD(s.dpdu) || !isFiniteD(s.dpdv))
                     fail(surface.describe(), ": not finite at (u, v) = (", u, ", ", v, ")",
                          surface.patchCount() > 1 ? concat(" of patch ", patch) : std::string());
             }

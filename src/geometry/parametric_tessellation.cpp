@@ -9,12 +9,15 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
+#include "double_box.h"
 #include "strahl/core/error.h"
 #include "strahl/core/transform.h"
 
 namespace strahl {
 
 namespace {
+
+using geometry_detail::isFiniteD;
 
 // Border vertices closer than this fraction of the surface's extent are one
 // vertex. Rounding makes the two sides of a seam differ by ~1e-16 relative;
@@ -58,8 +61,6 @@ private:
     std::unordered_map<uint64_t, std::vector<DVec3>> cells_;
 };
 
-bool finite(const DVec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
 }  // namespace
 
 Tessellation tessellateParametric(const ParametricSurface& surface, const ParametricGrid& grid,
@@ -74,7 +75,7 @@ Tessellation tessellateParametric(const ParametricSurface& surface, const Parame
         for (const double v : g.v)
             for (const double u : g.u) {
                 const DVec3 x = surface.point(p, u, v);
-                if (!finite(x))
+                if (!isFiniteD(x))
                     fail(surface.describe(), ": not finite at (u, v) = (", u, ", ", v, ")");
                 points[p].push_back(x);
                 lo = glm::min(lo, x);

@@ -39,30 +39,28 @@ private:
 
 namespace strahl {
 
-using namespace parametric_detail;
-
 ParametricSurfacePtr makeParametricTorus(double majorRadius, double minorRadius) {
-    requirePositive("major_radius", majorRadius);
-    requirePositive("minor_radius", minorRadius);
+    parametric_detail::requirePositive("major_radius", majorRadius);
+    parametric_detail::requirePositive("minor_radius", minorRadius);
     if (!(minorRadius < majorRadius))
         fail("minor_radius (", minorRadius, ") must be below major_radius (", majorRadius,
              "): a self-intersecting torus has no single outside");
-    return std::make_shared<Torus>(majorRadius, minorRadius);
+    return std::make_shared<parametric_detail::Torus>(majorRadius, minorRadius);
 }
 
 namespace {
 
-ParametricSurfacePtr parse(const SurfaceParameters& p) {
+ParametricSurfacePtr parseParametricTorus(const SurfaceParameters& p) {
     p.requireKeys({"type", "major_radius", "minor_radius"});
     const double R = p.number("major_radius", 1.0), r = p.number("minor_radius", 0.25);
     return p.checked([&] { return makeParametricTorus(R, r); });
 }
 
-constexpr std::array<std::string_view, 1> kNames = {"torus"};
+constexpr std::array<std::string_view, 1> kParametricTorusNames = {"torus"};
 
 }  // namespace
 
 extern const ParametricKind kParametricTorus;
-const ParametricKind kParametricTorus{kNames, &parse};
+const ParametricKind kParametricTorus{kParametricTorusNames, &parseParametricTorus};
 
 }  // namespace strahl

@@ -16,6 +16,7 @@
 #include <memory>
 #include <utility>
 
+#include "dual_value.h"
 #include "strahl/core/error.h"
 #include "strahl/geometry/bezier_patches.h"
 
@@ -25,12 +26,7 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * num::kPiD;
 
-double valueOf(double x) {
-    return x;
-}
-double valueOf(const Dual2& x) {
-    return x.v;
-}
+using geometry_detail::valueOf;
 
 struct Segment {
     std::array<double, 4> r, z;  // Bézier control values over t ∈ [0,1]

@@ -32,9 +32,9 @@ namespace fs = std::filesystem;
 
 namespace strahl {
 
-namespace {
+namespace meshio::ply {
 
-using namespace meshio::ply;
+namespace {
 
 const char* itemNoun(const Element& e, const Layout& layout) {
     if (&e == layout.vertex) return "vertices";
@@ -94,25 +94,27 @@ void readBinaryBody(const std::string& name, std::string_view data, const Header
 
 }  // namespace
 
+}  // namespace meshio::ply
+
 namespace meshio {
 
 LoadedMesh decodePly(std::string_view data, const fs::path& file, bool parallel) {
     const std::string name = file.string();
-    const Header header = parseHeader(name, data);
-    const Layout layout = makeLayout(name, header);
+    const ply::Header header = ply::parseHeader(name, data);
+    const ply::Layout layout = ply::makeLayout(name, header);
 
     LoadedMesh result;
-    result.mesh.attributes = makeAttributes(layout);
-    if (header.encoding == Encoding::Ascii)
-        readAsciiBody(name, data, header, layout, result.mesh);
+    result.mesh.attributes = ply::makeAttributes(layout);
+    if (header.encoding == ply::Encoding::Ascii)
+        ply::readAsciiBody(name, data, header, layout, result.mesh);
     else
-        readBinaryBody(name, data, header, layout, parallel, result.mesh);
+        ply::readBinaryBody(name, data, header, layout, parallel, result.mesh);
     // Both body readers already check everything validate() does as they store
     // it (finite coordinates, indices below the vertex count; the array sizes
     // hold by construction), the parallel decoder in parallel: validating again
     // would be a sequential pass over the whole mesh (6 % of a 10M-triangle
     // load). The sequential path keeps it, as the loader always did.
-    if (!parallel || header.encoding == Encoding::Ascii) result.mesh.validate(name);
+    if (!parallel || header.encoding == ply::Encoding::Ascii) result.mesh.validate(name);
     return result;
 }
 

@@ -28,27 +28,16 @@ Bounds3 parseBox(const JsonValue& v) {
     return box;
 }
 
-double number(const JsonValue& v, std::string_view key, double fallback) {
+// The built-in kinds' number reader (json_surface_parameters.h): the scene's float.
+double readFloatNumber(const JsonValue& v, std::string_view key, double fallback) {
     const auto found = v.find(key);
     return found ? static_cast<double>(found->number()) : fallback;
 }
 
-// Runs a geometry constructor; its strahl::Error (which names the parameter but
-// not the place) is re-thrown with the JSON pointer of `v`.
-template <class Make>
-ImplicitSurfacePtr build(const JsonValue& v, Make&& make) {
-    try {
-        return make();
-    } catch (const Error& e) {
-        v.fail(e.what());
-    }
-}
-
-
 ImplicitSurfacePtr parseSurface(const JsonValue& v, int depth);
 
 // The "type" names: the built-in kinds', then the formula and the CSG operations.
-const std::vector<std::string_view>& surfaceTypes() {
+const std::vector<std::string_view>& implicitSurfaceTypes() {
     static const std::vector<std::string_view> types = kindNamesThen(
         implicitKinds(), {"formula", "union", "intersection", "difference", "smooth_union"});
     return types;
@@ -64,7 +53,7 @@ std::vector<ImplicitSurfacePtr> parseOperands(const JsonValue& v, int depth) {
 
 ImplicitSurfacePtr parseSurfaceKind(const JsonValue& v, const std::string& type, int depth) {
     if (const ImplicitKind* kind = findImplicitKind(type))
-        return kind->parse(JsonSurfaceParameters(v, type, &number));
+        return kind->parse(JsonSurfaceParameters(v, type, &readFloatNumber));
     if (type == "formula") {
         v.requireKeys({"type", "transform", "f", "parameters"});
         std::map<std::string, double> parameters;
@@ -75,14 +64,14 @@ ImplicitSurfacePtr parseSurfaceKind(const JsonValue& v, const std::string& type,
         }
         const JsonValue f = v.get("f");
         const std::string text = f.string();
-        return build(f, [&] { return makeFormulaSurface(text, parameters); });
+        return buildAt(f, [&] { return makeFormulaSurface(text, parameters); });
     }
     // CSG
     if (type == "smooth_union") {
         v.requireKeys({"type", "transform", "operands", "blend"});
         const double blend = v.get("blend").number();
         auto operands = parseOperands(v, depth);
-        return build(v, [&] {
+        return buildAt(v, [&] {
             return makeCsg(CsgOperation::SmoothUnion, std::move(operands), blend);
         });
     }
@@ -91,17 +80,17 @@ ImplicitSurfacePtr parseSurfaceKind(const JsonValue& v, const std::string& type,
                             : type == "intersection" ? CsgOperation::Intersection
                                                      : CsgOperation::Difference;
     auto operands = parseOperands(v, depth);
-    return build(v, [&] { return makeCsg(op, std::move(operands)); });
+    return buildAt(v, [&] { return makeCsg(op, std::move(operands)); });
 }
 
 ImplicitSurfacePtr parseSurface(const JsonValue& v, int depth) {
     if (depth > kMaxCsgDepth) v.fail("CSG nested deeper than ", kMaxCsgDepth, " levels");
     if (!v.raw().is_object()) v.fail("expected a surface object, got ", v.describe());
-    const std::string type = v.get("type").oneOf(surfaceTypes());
+    const std::string type = v.get("type").oneOf(implicitSurfaceTypes());
     ImplicitSurfacePtr surface = parseSurfaceKind(v, type, depth);
     if (auto transform = v.find("transform")) {
         const Mat4 placement = parseTransform(*transform);
-        surface = build(*transform, [&] { return makeTransformed(surface, placement); });
+        surface = buildAt(*transform, [&] { return makeTransformed(surface, placement); });
     }
     return surface;
 }

@@ -9,11 +9,11 @@ namespace strahl::scene_detail {
 
 namespace {
 
-constexpr std::string_view kExtensions[] = {".json"};
+constexpr std::string_view kJsonExtensions[] = {".json"};
 
-nlohmann::json toDocument(const std::string& text, const std::filesystem::path&,
-                          const std::string& label,
-                          const std::map<std::string, std::string>& defines) {
+nlohmann::json jsonToDocument(const std::string& text, const std::filesystem::path&,
+                              const std::string& label,
+                              const std::map<std::string, std::string>& defines) {
     if (!defines.empty())
         fail(label, ": -D ", defines.begin()->first,
              ": strahl JSON scenes have no parameters to define (use --set POINTER=VALUE)");
@@ -22,6 +22,6 @@ nlohmann::json toDocument(const std::string& text, const std::filesystem::path&,
 
 }  // namespace
 
-extern const SceneFormat kJsonSceneFormat{"strahl JSON", kExtensions, &toDocument};
+extern const SceneFormat kJsonSceneFormat{"strahl JSON", kJsonExtensions, &jsonToDocument};
 
 }  // namespace strahl::scene_detail

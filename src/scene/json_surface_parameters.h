@@ -3,13 +3,15 @@
 // built-in surface kinds read it (strahl/geometry/surface_parameters.h). The
 // families differ only in how they read a number (implicit surfaces: as the
 // scene's floats; parametric ones: in double precision or as a constant
-// formula), which the parser passes in.
+// formula), which the parser passes in. Also what both surface parsers use to
+// run a geometry constructor (buildAt).
 
 #include <memory>
 #include <string>
 #include <string_view>
 
 #include "json_reader.h"
+#include "strahl/core/error.h"
 #include "strahl/geometry/surface_parameters.h"
 
 namespace strahl::scene_detail {
@@ -48,5 +50,16 @@ private:
     std::string_view type_;
     NumberReader number_;
 };
+
+// Runs a geometry constructor; its strahl::Error (which names the parameter but
+// not the place) is re-thrown with the JSON pointer of `v`.
+template <class Make>
+auto buildAt(const JsonValue& v, Make&& make) -> decltype(make()) {
+    try {
+        return make();
+    } catch (const Error& e) {
+        v.fail(e.what());
+    }
+}
 
 }  // namespace strahl::scene_detail

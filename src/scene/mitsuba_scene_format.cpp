@@ -9,17 +9,18 @@ namespace strahl::scene_detail {
 
 namespace {
 
-constexpr std::string_view kExtensions[] = {".xml"};
+constexpr std::string_view kMitsubaExtensions[] = {".xml"};
 
-nlohmann::json toDocument(const std::string& text, const std::filesystem::path& file,
-                          const std::string& label,
-                          const std::map<std::string, std::string>& defines) {
+nlohmann::json mitsubaToDocument(const std::string& text, const std::filesystem::path& file,
+                                 const std::string& label,
+                                 const std::map<std::string, std::string>& defines) {
     const mitsuba::Scene scene = mitsuba::readScene(text, label, defines);
     return mitsuba::toStrahlDocument(scene, std::filesystem::absolute(file).parent_path());
 }
 
 }  // namespace
 
-extern const SceneFormat kMitsubaSceneFormat{"Mitsuba 3 XML", kExtensions, &toDocument};
+extern const SceneFormat kMitsubaSceneFormat{"Mitsuba 3 XML", kMitsubaExtensions,
+                                             &mitsubaToDocument};
 
 }  // namespace strahl::scene_detail

@@ -42,7 +42,8 @@ double exactNumber(const JsonValue& v, const std::map<std::string, double>& para
     return x;
 }
 
-double number(const JsonValue& v, std::string_view key, double fallback) {
+// The built-in kinds' number reader (json_surface_parameters.h): exactNumber.
+double readExactNumber(const JsonValue& v, std::string_view key, double fallback) {
     const auto found = v.find(key);
     return found ? exactNumber(*found, {}) : fallback;
 }
@@ -57,17 +58,6 @@ std::map<std::string, double> parseParameters(const JsonValue& v) {
     return parameters;
 }
 
-// Runs a geometry constructor; its strahl::Error (which names the parameter
-// but not the place) is re-thrown with the JSON pointer of `v`.
-template <class Make>
-ParametricSurfacePtr build(const JsonValue& v, Make&& make) {
-    try {
-        return make();
-    } catch (const Error& e) {
-        v.fail(e.what());
-    }
-}
-
 void parseRange(const JsonValue& v, const std::map<std::string, double>& parameters, double& lo,
                 double& hi) {
     if (v.size() != 2) v.fail("expected [min, max]");
@@ -78,7 +68,7 @@ void parseRange(const JsonValue& v, const std::map<std::string, double>& paramet
 
 
 // The "type" names: the built-in kinds', then the surfaces built here.
-const std::vector<std::string_view>& surfaceTypes() {
+const std::vector<std::string_view>& parametricSurfaceTypes() {
     static const std::vector<std::string_view> types =
         kindNamesThen(parametricKinds(), {"revolution", "bezier", "bilinear", "heightfield", "formula"});
     return types;
@@ -98,15 +88,15 @@ ParametricSurfacePtr parseFormula(const JsonValue& v) {
         if (domain.twistedU && !domain.periodicU) p->fail("a twisted seam needs \"periodic_u\": true");
     }
     const ParametricFormulaText text{v.get("x").string(), v.get("y").string(), v.get("z").string()};
-    return build(v, [&] { return makeParametricFormula(text, domain, parameters); });
+    return buildAt(v, [&] { return makeParametricFormula(text, domain, parameters); });
 }
 
 // The shape's "surface": built now, or for a file kind named for the builder.
 void parseSurface(const JsonValue& v, const std::filesystem::path& folder, ParametricDesc& p) {
     if (!v.raw().is_object()) v.fail("expected a surface object, got ", v.describe());
-    const std::string type = v.get("type").oneOf(surfaceTypes());
+    const std::string type = v.get("type").oneOf(parametricSurfaceTypes());
     if (const ParametricKind* kind = findParametricKind(type)) {
-        p.surface = kind->parse(JsonSurfaceParameters(v, type, &number));
+        p.surface = kind->parse(JsonSurfaceParameters(v, type, &readExactNumber));
         return;
     }
     if (type == "revolution") {
@@ -114,7 +104,7 @@ void parseSurface(const JsonValue& v, const std::filesystem::path& folder, Param
         const JsonValue list = v.get("profile");
         std::vector<glm::dvec2> profile;
         for (size_t i = 0; i < list.size(); ++i) profile.push_back(glm::dvec2(list.at(i).vec2()));
-        p.surface = build(v, [&] { return makeSurfaceOfRevolution(std::move(profile)); });
+        p.surface = buildAt(v, [&] { return makeSurfaceOfRevolution(std::move(profile)); });
         return;
     }
     if (type == "bezier") {
@@ -154,7 +144,7 @@ void parseSurface(const JsonValue& v, const std::filesystem::path& folder, Param
                 index.fail("index ", value, " is beyond the ", positions.size(), " positions");
             corners.push_back(static_cast<uint32_t>(value));
         }
-        p.surface = build(v, [&] { return makeBilinearPatchSet(positions, corners, ""); });
+        p.surface = buildAt(v, [&] { return makeBilinearPatchSet(positions, corners, ""); });
         return;
     }
     if (type == "heightfield") {
@@ -165,7 +155,7 @@ void parseSurface(const JsonValue& v, const std::filesystem::path& folder, Param
         f.file = resolvePath(folder, image);
         f.at = image.place();
         if (auto s = v.find("size")) f.size = s->vec2();
-        f.height = number(v, "height", 1.0);
+        f.height = readExactNumber(v, "height", 1.0);
         p.file = std::move(f);
         return;
     }

@@ -10,11 +10,11 @@ namespace strahl::scene_detail {
 
 namespace {
 
-constexpr std::string_view kExtensions[] = {".pbrt"};
+constexpr std::string_view kPbrtExtensions[] = {".pbrt"};
 
-nlohmann::json toDocument(const std::string& text, const std::filesystem::path& file,
-                          const std::string& label,
-                          const std::map<std::string, std::string>& defines) {
+nlohmann::json pbrtToDocument(const std::string& text, const std::filesystem::path& file,
+                              const std::string& label,
+                              const std::map<std::string, std::string>& defines) {
     if (!defines.empty())
         fail(label, ": -D ", defines.begin()->first, ": pbrt scenes have no parameters to define");
     const pbrt::Scene scene = pbrt::readScene(text, file, label);
@@ -23,6 +23,6 @@ nlohmann::json toDocument(const std::string& text, const std::filesystem::path& 
 
 }  // namespace
 
-extern const SceneFormat kPbrtSceneFormat{"pbrt-v4", kExtensions, &toDocument};
+extern const SceneFormat kPbrtSceneFormat{"pbrt-v4", kPbrtExtensions, &pbrtToDocument};
 
 }  // namespace strahl::scene_detail

@@ -82,6 +82,13 @@ void setAttribute(OiioSystem& system, const char* name, float value) {
         fail("OpenImageIO rejected the texture option ", name, " = ", value);
 }
 
+}  // namespace
+
+// Not in the anonymous namespace: TextureSystem::Impl, which has external
+// linkage, holds Entry values (GCC's -Wsubobject-linkage flags that when the
+// file is compiled as part of a unity source).
+namespace texture_detail {
+
 // One registered (file, encoding). Stored channels: 1 grey, 2 grey + alpha,
 // 3 RGB, 4 or more RGBA followed by channels strahl does not use.
 struct Entry {
@@ -103,7 +110,9 @@ struct Entry {
     }
 };
 
-}  // namespace
+}  // namespace texture_detail
+
+using texture_detail::Entry;
 
 struct TextureSystem::Impl {
     OiioSystem* system = nullptr;
