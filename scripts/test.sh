@@ -5,7 +5,7 @@
 # (scripts/fuzz.sh). Ends with one pass/fail count over all three and exits
 # non-zero if anything failed. docs/reliability.md describes the last two.
 #
-# Usage: scripts/test.sh           everything (what CI runs, in a clean root; about 44 min on 2 cores after README command 1)
+# Usage: scripts/test.sh           everything (what CI runs, in a clean root; about 35 min on 2 cores after README command 1)
 #        scripts/test.sh --quick   the Release suite only (the edit-build-test loop)
 # Environment: FUZZ_SECONDS, fuzzing time per target (default 30).
 set -uo pipefail
