@@ -17,6 +17,7 @@
 #include "strahl/bsdf/bsdf.h"
 #include "strahl/core/rng.h"
 #include "strahl/core/sampling.h"
+#include "test_random.h"
 
 namespace strahl::test {
 
@@ -47,14 +48,9 @@ inline Bsdf coatedConductor(const Color& eta, const Color& k, float metalAlpha, 
     return Bsdf::coatedConductor(kept.back(), metalAlpha, coatAlpha);
 }
 
-inline Vec2 next2(Pcg32& rng) {
-    const float x = rng.nextFloat();
-    return Vec2(x, rng.nextFloat());
-}
-
 // A uniformly distributed direction of the upper hemisphere.
 inline Vec3 sampleHemisphere(Pcg32& rng) {
-    const Vec3 w = sampleUniformSphere(next2(rng));
+    const Vec3 w = sampleUniformSphere(next2D(rng));
     return Vec3(w.x, w.y, std::abs(w.z));
 }
 
@@ -81,7 +77,7 @@ inline AlbedoEstimate estimateAlbedo(const Bsdf& bsdf, const Vec3& wo, int n, ui
     glm::dvec3 sum(0.0), sumSq(0.0);
     for (int i = 0; i < n; ++i) {
         const float uLobe = rng.nextFloat();
-        const auto s = bsdf.sample(wo, uLobe, next2(rng));
+        const auto s = bsdf.sample(wo, uLobe, next2D(rng));
         if (!s) continue;
         glm::dvec3 w = glm::dvec3(s->f) * (std::abs(static_cast<double>(s->wi.z)) / s->pdf);
         if (s->transmission && undoRadianceScaling) w *= static_cast<double>(s->eta * s->eta);
@@ -192,7 +188,7 @@ inline Chi2Result chi2Test(const Bsdf& bsdf, const Vec3& wo, int n, uint64_t see
     Pcg32 rng(seed, 11);
     for (int i = 0; i < n; ++i) {
         const float uLobe = rng.nextFloat();
-        const auto s = bsdf.sample(wo, uLobe, next2(rng));
+        const auto s = bsdf.sample(wo, uLobe, next2D(rng));
         if (s && !s->specular) observed[static_cast<size_t>(grid.cellOf(s->wi))] += 1.0;
     }
     std::vector<double> expected = integratePdfCells(bsdf, wo, grid);

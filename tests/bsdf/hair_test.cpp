@@ -34,7 +34,7 @@ TEST(Hair, ALosslessFibreReturnsAllLightInAWhiteFurnace) {
                 constexpr int kSamples = 200000;
                 double sum = 0.0;
                 for (int i = 0; i < kSamples; ++i) {
-                    const Vec3 wi = sampleUniformSphere(test::next2(rng));
+                    const Vec3 wi = sampleUniformSphere(test::next2D(rng));
                     sum += double(hair.f(wo, wi).g) * std::abs(wi.z) * (4.0 * test::kPiD);
                 }
                 // Narrow lobes (beta_m 0.15) make uniform sampling noisy: 5 %.
@@ -50,8 +50,8 @@ TEST(Hair, WithoutAbsorptionEverySampleWeighsOne) {
         for (float betaN : {0.1f, 0.4f, 0.9f}) {
             const Bsdf hair = Bsdf::hair(Color(0.0f), betaM, betaN, 3.0f);
             for (int i = 0; i < 2000; ++i) {
-                const Vec3 wo = sampleUniformSphere(test::next2(rng));
-                const auto s = hair.sample(wo, rng.nextFloat(), test::next2(rng));
+                const Vec3 wo = sampleUniformSphere(test::next2D(rng));
+                const auto s = hair.sample(wo, rng.nextFloat(), test::next2D(rng));
                 if (!s) continue;
                 const float weight = s->f.g * std::abs(s->wi.z) / s->pdf;
                 ASSERT_NEAR(weight, 1.0f, 2e-3f) << betaM << " " << betaN;

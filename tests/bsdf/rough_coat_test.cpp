@@ -27,7 +27,7 @@ test::AlbedoEstimate lobeAlbedo(const Bsdf& glass, const Vec3& wo, bool transmis
     double sum = 0.0, sumSq = 0.0;
     for (int i = 0; i < kSamples; ++i) {
         const float uLobe = rng.nextFloat();
-        const auto s = glass.sample(wo, uLobe, test::next2(rng));
+        const auto s = glass.sample(wo, uLobe, test::next2D(rng));
         if (!s || s->transmission != transmission) continue;
         double w = double(s->f.r) * std::abs(double(s->wi.z)) / double(s->pdf);
         if (s->transmission) w *= double(s->eta) * double(s->eta);

@@ -103,7 +103,7 @@ TEST(BsdfSampling, SampleReportsTheEvaluatedFAndPdf) {
             int nonDelta = 0;
             for (int i = 0; i < 2000; ++i) {
                 const float uLobe = rng.nextFloat();
-                const auto s = c.bsdf.sample(wo, uLobe, test::next2(rng));
+                const auto s = c.bsdf.sample(wo, uLobe, test::next2D(rng));
                 if (!s) continue;
                 ASSERT_TRUE(isFinite(s->f) && std::isfinite(s->pdf)) << c.name;
                 ASSERT_GT(s->pdf, 0.0f) << c.name;
@@ -141,7 +141,7 @@ TEST(BsdfSampling, PdfIntegratesToTheNonDeltaSampleRate) {
                 int produced = 0;
                 for (int i = 0; i < kN; ++i) {
                     const float uLobe = rng.nextFloat();
-                    const auto s = c.bsdf.sample(wo, uLobe, test::next2(rng));
+                    const auto s = c.bsdf.sample(wo, uLobe, test::next2D(rng));
                     if (s && !s->specular) ++produced;
                 }
                 const double rate = static_cast<double>(produced) / kN;
@@ -207,7 +207,7 @@ TEST(BsdfSampling, ChiSquareDetectsAWrongPdf) {
     constexpr int kN = 200000;
     for (int i = 0; i < kN; ++i) {
         const float uLobe = rng.nextFloat();
-        const auto s = a.sample(wo, uLobe, test::next2(rng));
+        const auto s = a.sample(wo, uLobe, test::next2D(rng));
         if (s) observed[static_cast<size_t>(grid.cellOf(s->wi))] += 1.0;
     }
     const auto expected = test::integratePdfCells(b, wo, grid);

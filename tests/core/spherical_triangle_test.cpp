@@ -9,16 +9,14 @@
 #include "core_test_helpers.h"
 #include "strahl/core/rng.h"
 #include "strahl/core/sampling.h"
+#include "test_random.h"
 
 namespace strahl {
 namespace {
 
 using test::chiSquareCritical;
 
-Vec2 next2D(Pcg32& rng) {
-    const float x = rng.nextFloat();
-    return Vec2(x, rng.nextFloat());
-}
+using test::next2D;
 
 TEST(TriangleSolidAngle, OctantIsHalfPi) {
     const Vec3 o(0.0f);

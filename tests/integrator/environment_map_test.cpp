@@ -6,9 +6,9 @@
 #include <cmath>
 #include <vector>
 
-#include "integrator_test_helpers.h"
 #include "strahl/core/error.h"
 #include "strahl/core/rng.h"
+#include "test_random.h"
 
 namespace strahl {
 namespace {

@@ -9,10 +9,10 @@
 #include <string_view>
 #include <vector>
 
-#include "integrator_test_helpers.h"
 #include "strahl/core/error.h"
 #include "strahl/core/rng.h"
 #include "strahl/core/spherical_triangle.h"
+#include "test_random.h"
 #include "test_support.h"
 
 namespace strahl {
