@@ -69,6 +69,22 @@ std::shared_ptr<const UserShape> makeCurveShape(const SceneDesc& desc, const Sha
     }
 }
 
+// A mesh whose triangles all take one material slot (an OBJ with a single
+// usemtl, say) keeps that slot alone and no per-triangle table: it saves 4
+// bytes a triangle, and on large meshes a cache miss at every hit (the
+// table's entry is read by every surface interaction). Same materials, same
+// image.
+void collapseUniformSlots(SceneShape& geometry) {
+    std::vector<uint32_t>& slots = geometry.mesh.faceMaterials;
+    if (slots.empty()) return;
+    const uint32_t slot = slots.front();
+    if (slot >= geometry.materialOfSlot.size()) return;  // (loaders give slots of their own materials)
+    if (std::any_of(slots.begin(), slots.end(), [slot](uint32_t s) { return s != slot; })) return;
+    geometry.materialOfSlot = {geometry.materialOfSlot[slot]};
+    slots.clear();
+    slots.shrink_to_fit();
+}
+
 // Every mesh attribute the shape's materials read must be on its mesh.
 void checkMeshAttributes(const SceneDesc& desc, const ShapeDesc& shape, const SceneShape& geometry,
                          const World& world) {
@@ -361,6 +377,7 @@ BuiltScene buildScene(const SceneDesc& desc, const BuildOptions& options, BuildT
                     fail(desc.file.filename().string(), ": ", e.what());
                 }
             }
+            collapseUniformSlots(geometry);
         }
         checkMeshAttributes(desc, shape, geometry, world);
         jobs[i].destination->push_back(std::move(geometry));

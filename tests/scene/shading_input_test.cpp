@@ -549,5 +549,42 @@ TEST(ShadingInput, MissingMtlTextureIsAWarningAndKeepsTheConstantColour) {
     EXPECT_EQ(std::get<DiffuseMaterial>(red.kind).color.value, Color(0.6f, 0.1f, 0.1f));
 }
 
+// A mesh whose triangles all use one of its file's materials keeps that
+// material alone, without a per-triangle slot table; a mesh of two keeps the
+// table and both.
+TEST(ShadingInput, MeshOfOneMaterialDropsItsPerTriangleSlots) {
+    const fs::path dir = test::scratchDir("shading-uniform-slots");
+    writeFile(dir / "two.mtl", "newmtl red\nKd 0.6 0.1 0.1\nnewmtl blue\nKd 0.1 0.1 0.6\n");
+    const std::string quad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
+    writeFile(dir / "uniform.obj",
+              "mtllib two.mtl\n" + quad + "usemtl blue\nf 1 2 3\nf 1 3 4\n");
+    writeFile(dir / "mixed.obj",
+              "mtllib two.mtl\n" + quad + "usemtl red\nf 1 2 3\nusemtl blue\nf 1 3 4\n");
+    const std::string text = R"({"shapes": [{"type": "mesh", "file": "uniform.obj"},
+                                            {"type": "mesh", "file": "mixed.obj"}]})";
+    writeFile(dir / "scene.json", text);
+    const World world = buildWorld(parseSceneText(text, dir / "scene.json"), BuildOptions{});
+    ASSERT_EQ(world.shapes.size(), 2u);
+
+    const SceneShape& uniform = world.shapes[0];
+    EXPECT_TRUE(uniform.mesh.faceMaterials.empty());
+    ASSERT_EQ(uniform.materialOfSlot.size(), 1u);
+    EXPECT_EQ(world.materials[uniform.materialOfSlot[0]].name, "uniform/blue");
+    for (uint32_t prim = 0; prim < 2; ++prim) {
+        Hit hit;
+        hit.geomID = 0;
+        hit.primID = prim;
+        hit.u = hit.v = 0.25f;
+        const Ray ray{Vec3(0.5f, 0.5f, 1.0f), Vec3(0.0f, 0.0f, -1.0f)};
+        EXPECT_EQ(world.material(hit, world.interaction(ray, hit)).name, "uniform/blue");
+    }
+
+    const SceneShape& mixed = world.shapes[1];
+    EXPECT_EQ(mixed.mesh.faceMaterials, (std::vector<uint32_t>{0, 1}));
+    ASSERT_EQ(mixed.materialOfSlot.size(), 2u);
+    EXPECT_EQ(world.materials[mixed.materialOfSlot[0]].name, "mixed/red");
+    EXPECT_EQ(world.materials[mixed.materialOfSlot[1]].name, "mixed/blue");
+}
+
 }  // namespace
 }  // namespace strahl
