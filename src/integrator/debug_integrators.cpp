@@ -6,14 +6,63 @@
 
 namespace strahl {
 
+namespace {
+
+// Shades the lanes of a camera packet whose shading normal is Embree's Ng
+// normalised (SurfaceHit::shadingNormal's first case: a top-level mesh without
+// vertex normals, Ng not zero), with color(unit normal, lane), and misses
+// black (DebugIntegrator::miss); other lanes are left to shade().
+template <class ColorOf>
+uint32_t shadeFlatMeshLanes(const World& world, const CameraLanes& lanes, Color* radiance,
+                            const ColorOf& color) {
+    uint32_t shaded = 0;
+    for (int lane = 0; lane < lanes.count; ++lane) {
+        if (lanes.valid[lane] != -1) continue;
+        if (lanes.geomID[lane] == kInvalidId) {
+            radiance[lane] = Color(0.0f);
+            shaded |= 1u << lane;
+            continue;
+        }
+        if (lanes.instID[lane] != kInvalidId) continue;
+        const SceneShape& shape = world.shapes[lanes.geomID[lane]];
+        if (!shape.isMesh() || !shape.mesh.normals.empty()) continue;
+        const Vec3 ng(lanes.ngX[lane], lanes.ngY[lane], lanes.ngZ[lane]);
+        const float len = glm::length(ng);
+        if (!(len > 0.0f)) continue;
+        const Color c = color(ng / len, Vec3(lanes.dirX[lane], lanes.dirY[lane], lanes.dirZ[lane]));
+        radiance[lane] = isFinite(c) ? c : Color(0.0f);
+        shaded |= 1u << lane;
+    }
+    return shaded;
+}
+
+// The two integrators' formulas, shared by shade() and shadeCameraLanes so
+// that both give the same bits.
+Color eyelight(const Vec3& normal, const Vec3& dir) {
+    return Color(std::abs(glm::dot(normal, glm::normalize(dir))));
+}
+Color normalColor(const Vec3& normal, const Vec3&) { return 0.5f * normal + Vec3(0.5f); }
+
+}  // namespace
+
 Color EyelightIntegrator::shade(const World&, const SurfaceHit& hit, Sampler&,
                                 ShadingStats&) const {
-    return Color(std::abs(glm::dot(hit.shadingNormal(), glm::normalize(hit.ray().dir))));
+    return eyelight(hit.shadingNormal(), hit.ray().dir);
+}
+
+uint32_t EyelightIntegrator::shadeCameraLanes(const World& world, const CameraLanes& lanes,
+                                              Color* radiance) const {
+    return shadeFlatMeshLanes(world, lanes, radiance, eyelight);
 }
 
 Color NormalIntegrator::shade(const World&, const SurfaceHit& hit, Sampler&,
                               ShadingStats&) const {
-    return 0.5f * hit.shadingNormal() + Vec3(0.5f);
+    return normalColor(hit.shadingNormal(), hit.ray().dir);
+}
+
+uint32_t NormalIntegrator::shadeCameraLanes(const World& world, const CameraLanes& lanes,
+                                            Color* radiance) const {
+    return shadeFlatMeshLanes(world, lanes, radiance, normalColor);
 }
 
 DepthIntegrator::DepthIntegrator(const World& world) {

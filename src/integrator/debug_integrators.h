@@ -14,12 +14,16 @@ class EyelightIntegrator final : public DebugIntegrator {
 public:
     std::string_view name() const override { return "eyelight"; }
     Color shade(const World&, const SurfaceHit& hit, Sampler&, ShadingStats&) const override;
+    uint32_t shadeCameraLanes(const World& world, const CameraLanes& lanes,
+                              Color* radiance) const override;
 };
 
 class NormalIntegrator final : public DebugIntegrator {
 public:
     std::string_view name() const override { return "normal"; }
     Color shade(const World&, const SurfaceHit& hit, Sampler&, ShadingStats&) const override;
+    uint32_t shadeCameraLanes(const World& world, const CameraLanes& lanes,
+                              Color* radiance) const override;
 };
 
 class DepthIntegrator final : public DebugIntegrator {

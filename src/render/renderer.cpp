@@ -67,8 +67,21 @@ void renderTilePackets(TileContext& ctx, const TileRayGenerator& gen, const Pixe
             for (int lane = 0; lane < N; ++lane)
                 if (packet.valid[lane]) ctx.film.prefetch(packet.px[lane], packet.py[lane]);
             ctx.world.accel->intersectPacket(packet.valid, packet.rays, RayCoherence::Coherent);
+            // The lanes the integrator shades at once (the AOVs need each
+            // lane's surface interaction: then none).
+            alignas(16) Color radiance[N];
+            const uint32_t shaded =
+                ctx.wantAovs ? 0u
+                             : ctx.integrator.shadeCameraLanes(
+                                   ctx.world, CameraLanes::of(packet.rays, packet.valid), radiance);
             for (int lane = 0; lane < N; ++lane) {
                 if (!packet.valid[lane]) continue;
+                if (shaded & (1u << lane)) {
+                    AovSample aov;
+                    aov.hit = packet.rays.geomID[lane] != kInvalidId;
+                    ctx.film.addSample(packet.px[lane], packet.py[lane], radiance[lane], aov);
+                    continue;
+                }
                 Ray ray = packet.rays.ray(lane);
                 ray.tfar = kInfinity;  // the packet's tfar now holds the hit distance
                 ctx.shadeSample(packet.px[lane], packet.py[lane], ray, packet.rays.hit(lane),

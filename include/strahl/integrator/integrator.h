@@ -64,6 +64,22 @@ struct IntegratorOptions {
     float coneAngle = 0.0f;
 };
 
+// A camera packet's rays and closest hits, lane by lane: views of the SoA
+// arrays of a RayHitPacket (core/packet.h), for integrators that shade a
+// packet at once (Integrator::shadeCameraLanes).
+struct CameraLanes {
+    int count = 0;                // lanes
+    const int* valid = nullptr;   // -1: traced, 0: not
+    const float *dirX = nullptr, *dirY = nullptr, *dirZ = nullptr;
+    const float *ngX = nullptr, *ngY = nullptr, *ngZ = nullptr;  // Embree's Ng, not unit
+    const uint32_t *geomID = nullptr, *instID = nullptr;          // kInvalidId: a miss / not instanced
+
+    template <class Packet>
+    static CameraLanes of(const Packet& p, const int* valid) {
+        return {Packet::kWidth, valid, p.dir_x, p.dir_y, p.dir_z, p.Ng_x, p.Ng_y, p.Ng_z, p.geomID, p.instID};
+    }
+};
+
 class Integrator {
 public:
     virtual ~Integrator() = default;
@@ -74,6 +90,21 @@ public:
                         ShadingStats& stats) const = 0;
     // Radiance along a ray that hit nothing.
     virtual Color miss(const World& world, const Ray& ray) const = 0;
+    // Camera packets (at most 32 lanes): shades the traced lanes it can from
+    // the accelerator's hit alone, without a SurfaceHit or a sampler, writing
+    // radiance[lane] and setting bit `lane` of the returned mask. The renderer
+    // shades every other traced lane with shade() or miss(). The values must
+    // be shade()'s and miss()'s bit for bit, finite (a non-finite one as 0,
+    // as shadeCameraSample drops it). The default shades none; eyelight and
+    // normal shade hits on meshes without vertex normals this way, where the
+    // per-lane calls cost as much as Embree's traversal (issue 20).
+    virtual uint32_t shadeCameraLanes(const World& world, const CameraLanes& lanes,
+                                      Color* radiance) const {
+        (void)world;
+        (void)lanes;
+        (void)radiance;
+        return 0;
+    }
 };
 
 std::span<const std::string_view> integratorNames();
