@@ -154,16 +154,66 @@ bool EmbreeSceneAccel::occluded(const Ray& ray) const {
     return r.tfar < 0.0f;  // Embree sets tfar = -inf on a hit
 }
 
+namespace {
+
+// Embree 3.13 traces a packet wider than the CPU's native width (16 lanes
+// without AVX-512, 8 without AVX) as a ray stream, and a stream ignores the
+// valid mask: it traces the inactive lanes too and writes their hits, against
+// rtcIntersect8/16's documented "hit data of inactive rays is not changed"
+// (seen with Debian's 3.13.5 on an AVX2 machine: inactive lanes came back
+// with the hits of their rays). A stream's own mark of an inactive ray is
+// tnear > tfar, so an emulated packet's inactive lanes carry that mark for
+// the call and get their own tnear and tfar back after it.
+template <class Packet>
+class InactiveLanesMarked {
+public:
+    InactiveLanesMarked(const int* valid, Packet& packet, bool emulated)
+        : valid_(valid), packet_(packet), emulated_(emulated) {
+        if (!emulated_) return;
+        for (int i = 0; i < Packet::kWidth; ++i) {
+            if (valid_[i] == -1) continue;
+            tnear_[i] = packet_.tnear[i];
+            tfar_[i] = packet_.tfar[i];
+            packet_.tnear[i] = 1.0f;  // tnear > tfar: inactive
+            packet_.tfar[i] = 0.0f;
+        }
+    }
+    ~InactiveLanesMarked() {
+        if (!emulated_) return;
+        for (int i = 0; i < Packet::kWidth; ++i) {
+            if (valid_[i] == -1) continue;
+            packet_.tnear[i] = tnear_[i];
+            packet_.tfar[i] = tfar_[i];
+        }
+    }
+    InactiveLanesMarked(const InactiveLanesMarked&) = delete;
+    InactiveLanesMarked& operator=(const InactiveLanesMarked&) = delete;
+
+private:
+    const int* valid_;
+    Packet& packet_;
+    bool emulated_;
+    float tnear_[Packet::kWidth] = {}, tfar_[Packet::kWidth] = {};
+};
+
+}  // namespace
+
 void EmbreeSceneAccel::intersect8(const int* valid, RayHitPacket8& packet, RayCoherence c) const {
     RTCIntersectContext context = makeContext(c);
-    rtcIntersect8(valid, scene_, &context, reinterpret_cast<RTCRayHit8*>(&packet));
+    {
+        const InactiveLanesMarked marked(valid, packet, !device_.supportsNative8());
+        rtcIntersect8(valid, scene_, &context, reinterpret_cast<RTCRayHit8*>(&packet));
+    }
     if (!quadTables_.empty()) toTriangleHits(valid, packet);
 }
 
 void EmbreeSceneAccel::intersect16(const int* valid, RayHitPacket16& packet,
                                    RayCoherence c) const {
     RTCIntersectContext context = makeContext(c);
-    rtcIntersect16(valid, scene_, &context, reinterpret_cast<RTCRayHit16*>(&packet));
+    {
+        const InactiveLanesMarked marked(valid, packet, !device_.supportsNative16());
+        rtcIntersect16(valid, scene_, &context, reinterpret_cast<RTCRayHit16*>(&packet));
+    }
     if (!quadTables_.empty()) toTriangleHits(valid, packet);
 }
 
