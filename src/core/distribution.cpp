@@ -77,9 +77,12 @@ float Distribution1D::sampleContinuous(float u, float& pdf, size_t& offset) cons
 }
 
 size_t Distribution1D::sampleDiscrete(float u, float& pmfOut) const {
-    float density;
-    size_t offset;
-    sampleContinuous(u, density, offset);
+    // sampleContinuous's bin, without the point inside it: the light choice
+    // of every next-event estimate comes here (issue 20).
+    const size_t n = func_.size();
+    u = std::isnan(u) ? 0.0f : std::clamp(u, 0.0f, kOneMinusEpsilon);
+    const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
+    const size_t offset = std::clamp<size_t>(static_cast<size_t>(it - cdf_.begin()), 1, n) - 1;
     pmfOut = pmf(offset);
     return offset;
 }

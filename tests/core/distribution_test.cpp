@@ -110,6 +110,26 @@ TEST(Distribution1D, DiscretePmfMatchesPmf) {
     }
 }
 
+// sampleDiscrete finds its bin without sampleContinuous's point in it: the
+// same bin for every u, empty bins, NaN and the ends included.
+TEST(Distribution1D, DiscreteBinIsTheContinuousSamplesBin) {
+    for (const std::vector<float>& weights :
+         {kWeights, std::vector<float>{0.0f, 0.0f, 1.0f, 2.0f, 0.0f, 0.0f},
+          std::vector<float>{5.0f}, std::vector<float>{0.0f, 0.0f, 0.0f}}) {
+        const Distribution1D d(weights);
+        Pcg32 rng(3, 8);
+        std::vector<float> us = {0.0f, 0x1.fffffep-1f, 1.0f, -0.5f, std::nanf("")};
+        for (int k = 0; k < 20000; ++k) us.push_back(rng.nextFloat());
+        for (float u : us) {
+            float pdf, pmf;
+            size_t offset;
+            d.sampleContinuous(u, pdf, offset);
+            EXPECT_EQ(d.sampleDiscrete(u, pmf), offset) << "u " << u;
+            EXPECT_EQ(pmf, d.pmf(offset));
+        }
+    }
+}
+
 TEST(Distribution1D, UNearOneAndZeroSkipEmptyEndBins) {
     const Distribution1D d({0.0f, 0.0f, 1.0f, 2.0f, 0.0f, 0.0f});
     float pdf;
