@@ -76,19 +76,11 @@ public:
         return inner_.occluded(ray);
     }
     void intersect8(const int* valid, RayHitPacket8& packet, RayCoherence c) const override {
-        QueryLog& log = logs_.local();
-        log.packets8.push_back(packet);
-        std::array<int, 16> mask{};
-        std::copy(valid, valid + 8, mask.begin());
-        log.valid.push_back(mask);
+        record(valid, packet, logs_.local().packets8);
         inner_.intersect8(valid, packet, c);
     }
     void intersect16(const int* valid, RayHitPacket16& packet, RayCoherence c) const override {
-        QueryLog& log = logs_.local();
-        log.packets16.push_back(packet);
-        std::array<int, 16> mask{};
-        std::copy(valid, valid + 16, mask.begin());
-        log.valid.push_back(mask);
+        record(valid, packet, logs_.local().packets16);
         inner_.intersect16(valid, packet, c);
     }
     int nativePacketWidth() const override { return inner_.nativePacketWidth(); }
@@ -98,6 +90,15 @@ public:
     tbb::enumerable_thread_specific<QueryLog>& logs() const { return logs_; }
 
 private:
+    // Logs a camera packet before it is traced, and its lanes' mask.
+    template <class Packet>
+    void record(const int* valid, const Packet& packet, std::vector<Packet>& packets) const {
+        packets.push_back(packet);
+        std::array<int, 16> mask{};
+        std::copy(valid, valid + Packet::kWidth, mask.begin());
+        logs_.local().valid.push_back(mask);
+    }
+
     const Accel& inner_;
     mutable tbb::enumerable_thread_specific<QueryLog> logs_;
 };
