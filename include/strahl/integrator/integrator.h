@@ -98,11 +98,8 @@ public:
     // as shadeCameraSample drops it). The default shades none; eyelight and
     // normal shade hits on meshes without vertex normals this way, where the
     // per-lane calls cost as much as Embree's traversal (issue 20).
-    virtual uint32_t shadeCameraLanes(const World& world, const CameraLanes& lanes,
-                                      Color* radiance) const {
-        (void)world;
-        (void)lanes;
-        (void)radiance;
+    virtual uint32_t shadeCameraLanes(const World& /*world*/, const CameraLanes& /*lanes*/,
+                                      Color* /*radiance*/) const {
         return 0;
     }
 };
