@@ -30,9 +30,9 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <exception>
 #include <limits>
 #include <memory>
@@ -225,7 +225,8 @@ int run(int argc, char** argv) {
     world.accel = std::move(recorder);
     renderOnce();
     const Replay replay(recording.logs());
-    std::unique_ptr<Accel> recorderOwner = std::move(world.accel);
+    // The replay points into the recorder's logs: it stays alive, set aside.
+    const std::unique_ptr<Accel> recorderKept = std::move(world.accel);
     world.accel = std::move(embree);
 
     double bestRender = std::numeric_limits<double>::infinity();

@@ -54,14 +54,18 @@ Distribution1D::Distribution1D(std::vector<float> weights) : func_(std::move(wei
     }
 }
 
-float Distribution1D::sampleContinuous(float u, float& pdf, size_t& offset) const {
-    const size_t n = func_.size();
+size_t Distribution1D::binOfSample(float& u) const {
     u = std::isnan(u) ? 0.0f : std::clamp(u, 0.0f, kOneMinusEpsilon);
     // The last bin whose cdf start is <= u. A bin of weight 0 has the same start
     // as its successor, so it is never the last such bin (unless it is the last
     // bin, whose start is 1 > u once all later weights are 0).
     const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
-    const size_t i = std::clamp<size_t>(static_cast<size_t>(it - cdf_.begin()), 1, n) - 1;
+    return std::clamp<size_t>(static_cast<size_t>(it - cdf_.begin()), 1, func_.size()) - 1;
+}
+
+float Distribution1D::sampleContinuous(float u, float& pdf, size_t& offset) const {
+    const size_t n = func_.size();
+    const size_t i = binOfSample(u);
     const float width = cdf_[i + 1] - cdf_[i];
     float du = u - cdf_[i];
     if (width > 0.0f) du /= width;
@@ -79,10 +83,7 @@ float Distribution1D::sampleContinuous(float u, float& pdf, size_t& offset) cons
 size_t Distribution1D::sampleDiscrete(float u, float& pmfOut) const {
     // sampleContinuous's bin, without the point inside it: the light choice
     // of every next-event estimate comes here (issue 20).
-    const size_t n = func_.size();
-    u = std::isnan(u) ? 0.0f : std::clamp(u, 0.0f, kOneMinusEpsilon);
-    const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
-    const size_t offset = std::clamp<size_t>(static_cast<size_t>(it - cdf_.begin()), 1, n) - 1;
+    const size_t offset = binOfSample(u);
     pmfOut = pmf(offset);
     return offset;
 }

@@ -4,32 +4,34 @@
 
 #include "debug_integrators.h"
 
+#include <optional>
+
 namespace strahl {
 
 namespace {
 
-// Shades the lanes of a camera packet whose shading normal is Embree's Ng
-// normalised (SurfaceHit::shadingNormal's first case: a top-level mesh without
-// vertex normals, Ng not zero), with color(unit normal, lane), and misses
-// black (DebugIntegrator::miss); other lanes are left to shade().
+// Shades the lanes of a camera packet whose shading normal needs no surface
+// interaction (SurfaceHit::normalWithoutInteraction) with color(unit normal,
+// direction), and misses black (DebugIntegrator::miss); other lanes are left
+// to shade().
 template <class ColorOf>
 uint32_t shadeFlatMeshLanes(const World& world, const CameraLanes& lanes, Color* radiance,
                             const ColorOf& color) {
     uint32_t shaded = 0;
     for (int lane = 0; lane < lanes.count; ++lane) {
         if (lanes.valid[lane] != -1) continue;
-        if (lanes.geomID[lane] == kInvalidId) {
+        Hit hit;
+        hit.geomID = lanes.geomID[lane];
+        if (!hit.valid()) {
             radiance[lane] = Color(0.0f);
             shaded |= 1u << lane;
             continue;
         }
-        if (lanes.instID[lane] != kInvalidId) continue;
-        const SceneShape& shape = world.shapes[lanes.geomID[lane]];
-        if (!shape.isMesh() || !shape.mesh.normals.empty()) continue;
-        const Vec3 ng(lanes.ngX[lane], lanes.ngY[lane], lanes.ngZ[lane]);
-        const float len = glm::length(ng);
-        if (!(len > 0.0f)) continue;
-        const Color c = color(ng / len, Vec3(lanes.dirX[lane], lanes.dirY[lane], lanes.dirZ[lane]));
+        hit.instID = lanes.instID[lane];
+        hit.Ng = Vec3(lanes.ngX[lane], lanes.ngY[lane], lanes.ngZ[lane]);
+        const std::optional<Vec3> normal = SurfaceHit::normalWithoutInteraction(world, hit);
+        if (!normal) continue;
+        const Color c = color(*normal, Vec3(lanes.dirX[lane], lanes.dirY[lane], lanes.dirZ[lane]));
         radiance[lane] = isFinite(c) ? c : Color(0.0f);
         shaded |= 1u << lane;
     }

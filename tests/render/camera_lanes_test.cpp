@@ -2,8 +2,9 @@
 // once: every lane it shades must get exactly what shadeCameraSample (shade()
 // or miss() of that lane alone) gives, bit for bit, so an image does not
 // depend on which of the two shaded a pixel. Checked on every camera packet of
-// a scene with all the cases: a flat top-level mesh (shaded at once), a smooth
-// mesh, meshes and an implicit surface inside instances, and misses.
+// a scene with all the cases: flat meshes at the top level and inside
+// instances and misses (shaded at once), a smooth mesh and an implicit surface
+// inside instances (left to shade()).
 
 #include <gtest/gtest.h>
 
@@ -85,8 +86,8 @@ TEST(CameraLanes, EyelightAndNormalShadeLanesAsShadeDoesBitForBit) {
         const auto integrator = makeIntegrator(name, scene.world);
         for (const LaneCounts counts : {checkEveryPacket<8>(scene.world, camera, *integrator),
                                         checkEveryPacket<16>(scene.world, camera, *integrator)}) {
-            // The floor and the misses at once; the instanced and smooth
-            // shapes left to shade().
+            // The flat meshes and the misses at once; the smooth pyramid
+            // and the implicit tori left to shade().
             EXPECT_GT(counts.shaded - counts.misses, 1000) << name;
             EXPECT_GT(counts.misses, 0) << name;
             EXPECT_GT(counts.left, 200) << name;

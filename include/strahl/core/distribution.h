@@ -27,6 +27,9 @@ public:
     float integral() const { return integral_; }  // mean of the weights
 
 private:
+    // Clamps u into [0, 1) in place (NaN to 0) and returns the bin it falls in.
+    size_t binOfSample(float& u) const;
+
     std::vector<float> func_;
     std::vector<float> cdf_;  // size() + 1 entries, cdf_[0] = 0, cdf_[size()] = 1
     float integral_ = 0.0f;

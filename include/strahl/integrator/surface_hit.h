@@ -28,18 +28,27 @@ public:
     // Unit shading normal. For meshes without vertex normals it is the
     // accelerator's geometric normal, normalised, with no vertex fetch.
     Vec3 shadingNormal() const {
-        const SceneShape& shape = world_.shape(hit_);
-        if (!si_ && shape.isMesh() && shape.mesh.normals.empty()) {
-            const SceneInstance* instance = world_.instance(hit_);
-            // An instanced hit's Ng is in object space (a moving instance's
-            // map depends on the time: the interaction knows it).
-            if (!instance || !instance->moves()) {
-                const Vec3 ng = instance ? instance->normalToWorld * hit_.Ng : hit_.Ng;
-                const float len = glm::length(ng);
-                if (len > 0.0f) return ng / len;
-            }
-        }
+        if (!si_)
+            if (const std::optional<Vec3> n = normalWithoutInteraction(world_, hit_)) return *n;
         return interaction().Ns;
+    }
+
+    // The unit shading normal of a valid hit when it needs no surface
+    // interaction: on a mesh without vertex normals, the accelerator's Ng
+    // normalised (mapped to world space for an instance at rest); nullopt
+    // for everything else (and a zero Ng). Camera packets shade from it too
+    // (Integrator::shadeCameraLanes), so both give the same bits.
+    static std::optional<Vec3> normalWithoutInteraction(const World& world, const Hit& hit) {
+        const SceneShape& shape = world.shape(hit);
+        if (!shape.isMesh() || !shape.mesh.normals.empty()) return std::nullopt;
+        const SceneInstance* instance = world.instance(hit);
+        // An instanced hit's Ng is in object space (a moving instance's
+        // map depends on the time: the interaction knows it).
+        if (instance && instance->moves()) return std::nullopt;
+        const Vec3 ng = instance ? instance->normalToWorld * hit.Ng : hit.Ng;
+        const float len = glm::length(ng);
+        if (!(len > 0.0f)) return std::nullopt;
+        return ng / len;
     }
 
 private:
